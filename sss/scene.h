@@ -1,0 +1,71 @@
+#pragma once
+// What a frame renders: objects, lights and camera, in metres. Filled from presets/*.json by
+// app/preset.h; passes read it, never write it.
+#include <glm/glm.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sss/material.h"
+
+namespace tallow::sss {
+
+enum class ShapeKind { Mesh, Sphere, Plane, Box };
+
+struct Transform {
+  glm::vec3 position{0.0f};     ///< metres; where the shape's anchor goes (see SceneObject)
+  glm::vec3 rotationDeg{0.0f};  ///< Euler angles, degrees, applied X then Y then Z
+  /// Metres. Mesh: the largest extent of the mesh's bounding box after scaling. Sphere: radius.
+  /// Box: edge length (multiplies `size`). Plane: multiplies `size`.
+  float scale = 1.0f;
+};
+
+struct SceneObject {
+  std::string name;
+  ShapeKind shape = ShapeKind::Mesh;
+  std::filesystem::path meshPath;  ///< ShapeKind::Mesh only; absolute once loaded
+  glm::vec3 size{1.0f};            ///< Plane: (x extent, unused, z extent); Box: edge lengths
+  Transform transform;
+  /// Translucent objects carry a measured material; until a subsurface method exists for them
+  /// they are drawn with `albedo` like opaque ones.
+  bool translucent = false;
+  Material material;
+  glm::vec3 albedo{0.8f};  ///< Lambertian reflectance of the opaque path, in [0, 1]
+};
+
+enum class LightKind { Directional, Point };
+
+struct Light {
+  LightKind kind = LightKind::Directional;
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  ///< directional: unit vector from the scene toward the light
+  glm::vec3 position{0.0f};               ///< point: metres
+  /// Directional: irradiance on a surface facing the light [W/m²] per band.
+  /// Point: radiant intensity [W/sr] per band.
+  glm::vec3 intensity{1.0f};
+  bool castsShadows = true;
+};
+
+struct Camera {
+  bool orthographic = false;
+  glm::vec3 position{0.0f, 0.5f, 1.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovYDeg = 35.0f;      ///< perspective: vertical field of view
+  float orthoHeight = 1.0f;   ///< orthographic: height of the view in metres
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::filesystem::path sourcePath;  ///< the preset file it came from, if any
+  std::vector<SceneObject> objects;
+  std::vector<Light> lights;
+  Camera camera;
+  glm::vec3 ambient{0.0f};     ///< uniform sky radiance [W/(m²·sr)] lighting opaque surfaces
+  glm::vec3 background{0.0f};  ///< radiance of pixels that hit nothing
+  float durationS = 0.0f;      ///< animation length in seconds; 0 = static scene
+  bool loop = true;
+};
+
+}  // namespace tallow::sss
