@@ -1,0 +1,98 @@
+#include "app/capture_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+#include "app/frame_stats.h"
+#include "app/input_error.h"
+#include "app/params.h"
+#include "gpu/atomic_file.h"
+#include "gpu/image_io.h"
+#include "sss/renderer.h"
+
+namespace tallow::app {
+
+void checkWritableFolder(const std::filesystem::path& dir) {
+  // The nearest folder that exists must be writable (so the rest can be created).
+  std::filesystem::path probe = std::filesystem::absolute(dir);
+  std::error_code ec;
+  while (!std::filesystem::exists(probe, ec)) {
+    if (!probe.has_parent_path() || probe.parent_path() == probe) break;
+    probe = probe.parent_path();
+  }
+  if (std::filesystem::exists(probe, ec) && !std::filesystem::is_directory(probe, ec))
+    throw InputError("--out: " + probe.string() + " is not a folder");
+  if (::access(probe.c_str(), W_OK | X_OK) != 0)
+    throw InputError("--out: cannot write to " + dir.string() + ": " + std::strerror(errno));
+}
+
+namespace {
+std::string frameName(int index, const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", index, extension);
+  return name;
+}
+}  // namespace
+
+int runCapture(const CaptureOptions& options) {
+  if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
+  if (options.frames < 1) throw InputError("--frames: must be at least 1");
+  if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
+  const LoadedScene loaded = loadScene(options.scene);
+  const Config& config = loaded.config;
+  const std::filesystem::path out(options.outDir);
+  checkWritableFolder(out);
+
+  gpu::ContextOptions contextOptions;
+  contextOptions.backend = gpu::parseGlBackend(options.gl);
+  contextOptions.visible = false;
+  auto context = gpu::GlContext::create(contextOptions);
+  const gpu::ShaderLibrary shaders = makeShaderLibrary(options.scene.shaderDir);
+  sss::Renderer renderer(shaders, config.scene, config.render);
+
+  RunRecord run;
+  run.command = "capture";
+  run.presetName = loaded.presetName;
+  run.presetPath = loaded.presetPath.string();
+  run.backend = context->backend();
+  run.gl = context->info();
+  run.width = config.render.width;
+  run.height = config.render.height;
+  run.triangles = renderer.triangleCount();
+  run.plan = sss::Renderer::plan(config.scene, config.render);
+  run.parameters = parameterRegistry(loaded.materials).snapshot(config);
+  if (options.scene.explain)
+    for (const auto& p : run.plan) std::printf("pass %-20s %s\n", p.name.c_str(), p.reason.c_str());
+
+  // Render every frame before writing any file, so that a failure leaves nothing behind.
+  std::vector<gpu::Image> images;
+  for (int i = 0; i < options.frames; ++i) {
+    FrameRecord frame;
+    frame.index = i;
+    frame.timeS = options.timeS + i / options.fps;
+    const auto start = std::chrono::steady_clock::now();
+    frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+    glFinish();
+    frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    images.push_back(renderer.readRadiance());
+    run.frames.push_back(std::move(frame));
+  }
+  run.gpuBytes = renderer.gpuBytes();
+
+  std::filesystem::create_directories(out);
+  for (int i = 0; i < options.frames; ++i) {
+    const auto& image = images[static_cast<std::size_t>(i)];
+    gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);
+    gpu::writeExr(out / frameName(i, "exr"), image, options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
+                  {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
+  }
+  gpu::writeTextFileAtomically(out / "stats.json", toJson(run).dump(2) + "\n");
+  std::printf("tallow: wrote %d frame(s) of %s (%dx%d, %s) to %s\n", options.frames, loaded.presetName.c_str(),
+              run.width, run.height, run.gl.renderer.c_str(), out.string().c_str());
+  return 0;
+}
+
+}  // namespace tallow::app

@@ -1,0 +1,28 @@
+#pragma once
+// `tallow capture`: renders frames headless and writes DIR/frame_NNNN.png (tone-mapped sRGB),
+// DIR/frame_NNNN.exr (linear) and DIR/stats.json. Nothing is written unless every frame rendered;
+// each file is written whole or not at all.
+#include <string>
+
+#include "app/setup.h"
+
+namespace tallow::app {
+
+struct CaptureOptions {
+  SceneOptions scene;
+  std::string gl = "osmesa";
+  std::string outDir;
+  int frames = 1;
+  double timeS = 0.0;
+  double fps = 30.0;
+  bool exrFloat = false;  ///< 32-bit float EXR channels instead of half
+};
+
+/// Returns the process exit code; throws InputError / ContextError / ShaderError / runtime_error
+/// with one line on failure.
+int runCapture(const CaptureOptions& options);
+
+/// Throws InputError when `dir` cannot be created or written (checked before rendering).
+void checkWritableFolder(const std::filesystem::path& dir);
+
+}  // namespace tallow::app

@@ -1,0 +1,59 @@
+#include "app/frame_stats.h"
+
+#include <algorithm>
+#include <map>
+
+namespace tallow::app {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+nlohmann::json toJson(const RunRecord& run) {
+  using nlohmann::json;
+  json frames = json::array();
+  std::vector<double> wall;
+  std::map<std::string, std::vector<double>> perPass;
+  std::vector<double> gpuTotal;
+  for (const FrameRecord& f : run.frames) {
+    json passes = json::object();
+    for (const auto& p : f.gpu.passes) {
+      passes[p.name] = p.gpuMs;
+      perPass[p.name].push_back(p.gpuMs);
+    }
+    frames.push_back({{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
+                      {"gpu_ms", passes}, {"gpu_total_ms", f.gpu.gpuTotalMs}});
+    wall.push_back(f.wallMs);
+    gpuTotal.push_back(f.gpu.gpuTotalMs);
+  }
+  json passMedians = json::object();
+  for (auto& [name, values] : perPass) passMedians[name] = median(values);
+  json plan = json::array();
+  for (const auto& p : run.plan) plan.push_back({{"name", p.name}, {"reason", p.reason}});
+  return {
+      {"command", run.command},
+      {"preset", {{"name", run.presetName}, {"path", run.presetPath}}},
+      {"gl",
+       {{"backend", std::string(gpu::glBackendName(run.backend))},
+        {"GL_VENDOR", run.gl.vendor},
+        {"GL_RENDERER", run.gl.renderer},
+        {"GL_VERSION", run.gl.version},
+        {"GL_SHADING_LANGUAGE_VERSION", run.gl.glsl}}},
+      {"resolution", {run.width, run.height}},
+      {"triangles", run.triangles},
+      {"gpu_memory_bytes", run.gpuBytes},
+      {"plan", plan},
+      {"frames", frames},
+      {"summary",
+       {{"frames", run.frames.size()},
+        {"wall_ms_median", median(wall)},
+        {"gpu_total_ms_median", median(gpuTotal)},
+        {"gpu_ms_median", passMedians}}},
+      {"parameters", run.parameters},
+  };
+}
+
+}  // namespace tallow::app

@@ -1,0 +1,37 @@
+#pragma once
+// stats.json: what ran, on which GL, how long each pass took, and every parameter's value.
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "app/config.h"
+#include "gpu/gl_context.h"
+#include "sss/renderer.h"
+
+namespace tallow::app {
+
+struct FrameRecord {
+  int index = 0;
+  double timeS = 0.0;
+  double wallMs = 0.0;  ///< CPU wall time from the start of the frame to glFinish
+  sss::FrameTimings gpu;
+};
+
+struct RunRecord {
+  std::string command;
+  std::string presetName, presetPath;
+  gpu::GlBackend backend = gpu::GlBackend::OsMesa;
+  gpu::GlInfo gl;
+  int width = 0, height = 0;
+  std::size_t triangles = 0;
+  std::size_t gpuBytes = 0;
+  std::vector<sss::PlannedPass> plan;
+  std::vector<FrameRecord> frames;
+  nlohmann::json parameters;
+};
+
+double median(std::vector<double> values);
+nlohmann::json toJson(const RunRecord& run);
+
+}  // namespace tallow::app

@@ -1,0 +1,87 @@
+// GLFW: the interactive window.
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "gpu/gl_context_backends.h"
+
+namespace tallow::gpu {
+namespace {
+
+std::string& lastGlfwError() {
+  static std::string error;
+  return error;
+}
+
+void glfwErrorCallback(int, const char* description) { lastGlfwError() = description ? description : "?"; }
+
+bool initGlfw() {
+  glfwSetErrorCallback(glfwErrorCallback);
+  return glfwInit() == GLFW_TRUE;
+}
+
+void* glfwProc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+
+class GlfwContext final : public GlContext {
+ public:
+  explicit GlfwContext(const ContextOptions& options) {
+    if (!initGlfw()) throw ContextError("glfw: cannot open a window: " + lastGlfwError());
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debugOutput ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
+    window_ = glfwCreateWindow(options.windowWidth, options.windowHeight, options.title.c_str(), nullptr, nullptr);
+    if (!window_) {
+      const std::string reason = lastGlfwError();
+      // What does the display offer? Any context will do for reading GL_VERSION.
+      std::string offer = "no context (" + reason + ")";
+      glfwDefaultWindowHints();
+      glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+      if (GLFWwindow* any = glfwCreateWindow(16, 16, "probe", nullptr, nullptr)) {
+        glfwMakeContextCurrent(any);
+        offer = detail::describeFallbackVersion(glfwProc);
+        glfwDestroyWindow(any);
+      }
+      glfwTerminate();
+      throw ContextError("OpenGL 4.5 core is required, but glfw offers " + offer);
+    }
+    makeCurrent();
+    glfwSwapInterval(1);
+    loadGl(glfwProc, "glfw", options.debugOutput);
+  }
+  ~GlfwContext() override {
+    if (window_) glfwDestroyWindow(window_);
+    glfwTerminate();
+  }
+  GlBackend backend() const override { return GlBackend::Glfw; }
+  void makeCurrent() override { glfwMakeContextCurrent(window_); }
+  GLFWwindow* window() const override { return window_; }
+
+ private:
+  GLFWwindow* window_ = nullptr;
+};
+
+}  // namespace
+
+bool displayAvailable() {
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!x11 || !*x11) && (!wayland || !*wayland)) return false;
+  if (!initGlfw()) return false;
+  glfwTerminate();
+  return true;
+}
+
+namespace detail {
+std::unique_ptr<GlContext> createGlfwContext(const ContextOptions& options) {
+  return std::make_unique<GlfwContext>(options);
+}
+}  // namespace detail
+
+}  // namespace tallow::gpu

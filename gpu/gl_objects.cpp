@@ -1,0 +1,199 @@
+#include "gpu/gl_objects.h"
+
+#include <stdexcept>
+
+namespace tallow::gpu {
+
+Buffer::Buffer(std::size_t bytes, const void* data, GLbitfield flags) : size_(bytes) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  name_ = detail::GlName<detail::BufferTraits>(id);
+  glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+}
+
+void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
+  glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
+  glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), out);
+}
+
+Texture Texture::make(GLenum target, GLenum format, int w, int h, int d, int levels) {
+  Texture t;
+  GLuint id = 0;
+  glCreateTextures(target, 1, &id);
+  t.name_ = detail::GlName<detail::TextureTraits>(id);
+  t.target_ = target;
+  t.format_ = format;
+  t.width_ = w;
+  t.height_ = h;
+  t.depth_ = d;
+  t.levels_ = levels;
+  switch (target) {
+    case GL_TEXTURE_2D:
+    case GL_TEXTURE_CUBE_MAP: glTextureStorage2D(id, levels, format, w, h); break;
+    default: glTextureStorage3D(id, levels, format, w, h, d); break;
+  }
+  t.setFilter(levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
+  t.setWrap(GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+Texture Texture::create2D(GLenum format, int width, int height, int levels) {
+  return make(GL_TEXTURE_2D, format, width, height, 1, levels);
+}
+Texture Texture::create2DArray(GLenum format, int width, int height, int layers, int levels) {
+  return make(GL_TEXTURE_2D_ARRAY, format, width, height, layers, levels);
+}
+Texture Texture::create3D(GLenum format, int width, int height, int depth, int levels) {
+  return make(GL_TEXTURE_3D, format, width, height, depth, levels);
+}
+Texture Texture::createCube(GLenum format, int size, int levels) {
+  Texture t = make(GL_TEXTURE_CUBE_MAP, format, size, size, 1, levels);
+  t.depth_ = 6;
+  return t;
+}
+Texture Texture::createCubeArray(GLenum format, int size, int cubes, int levels) {
+  return make(GL_TEXTURE_CUBE_MAP_ARRAY, format, size, size, 6 * cubes, levels);
+}
+
+namespace {
+std::size_t bytesPerTexel(GLenum format) {
+  switch (format) {
+    case GL_R8: return 1;
+    case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
+    case GL_DEPTH_COMPONENT24: return 3;  // typically padded to 4
+    case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_RG16F: case GL_R32UI: case GL_R32I:
+    case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_R11F_G11F_B10F: return 4;
+    case GL_RGBA16F: case GL_RG32F: return 8;
+    case GL_RGB32F: return 12;
+    case GL_RGBA32F: return 16;
+    default: return 4;
+  }
+}
+}  // namespace
+
+std::size_t Texture::bytes() const {
+  std::size_t total = 0;
+  int w = width_, h = height_, d = depth_;
+  for (int level = 0; level < levels_; ++level) {
+    total += static_cast<std::size_t>(w) * h * d * bytesPerTexel(format_);
+    w = w > 1 ? w / 2 : 1;
+    h = h > 1 ? h / 2 : 1;
+    if (target_ == GL_TEXTURE_3D) d = d > 1 ? d / 2 : 1;
+  }
+  return total;
+}
+
+void Texture::setFilter(GLenum minFilter, GLenum magFilter) {
+  glTextureParameteri(id(), GL_TEXTURE_MIN_FILTER, static_cast<GLint>(minFilter));
+  glTextureParameteri(id(), GL_TEXTURE_MAG_FILTER, static_cast<GLint>(magFilter));
+}
+
+void Texture::setWrap(GLenum wrap) {
+  glTextureParameteri(id(), GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+  glTextureParameteri(id(), GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+  glTextureParameteri(id(), GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
+}
+
+void Texture::setBorderColor(float r, float g, float b, float a) {
+  const float c[4] = {r, g, b, a};
+  glTextureParameterfv(id(), GL_TEXTURE_BORDER_COLOR, c);
+}
+
+void Texture::setDepthCompare(bool enabled) {
+  glTextureParameteri(id(), GL_TEXTURE_COMPARE_MODE, enabled ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  glTextureParameteri(id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+
+void Texture::generateMipmaps() { glGenerateTextureMipmap(id()); }
+
+Framebuffer::Framebuffer() {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  name_ = detail::GlName<detail::FramebufferTraits>(id);
+}
+
+void Framebuffer::attachColor(int index, const Texture& texture, int level, int layer) {
+  const GLenum point = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(index);
+  if (layer < 0) glNamedFramebufferTexture(id(), point, texture.id(), level);
+  else glNamedFramebufferTextureLayer(id(), point, texture.id(), level, layer);
+}
+
+void Framebuffer::attachDepth(const Texture& texture, int level, int layer) {
+  if (layer < 0) glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, texture.id(), level);
+  else glNamedFramebufferTextureLayer(id(), GL_DEPTH_ATTACHMENT, texture.id(), level, layer);
+}
+
+void Framebuffer::setDrawBuffers(int count) {
+  if (count == 0) {
+    glNamedFramebufferDrawBuffer(id(), GL_NONE);
+    glNamedFramebufferReadBuffer(id(), GL_NONE);
+    return;
+  }
+  GLenum buffers[8];
+  for (int i = 0; i < count && i < 8; ++i) buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+  glNamedFramebufferDrawBuffers(id(), count, buffers);
+  glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0);
+}
+
+void Framebuffer::checkComplete(const std::string& what) const {
+  const GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
+  if (status == GL_FRAMEBUFFER_COMPLETE) return;
+  const char* text = "unknown status";
+  switch (status) {
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: text = "incomplete attachment"; break;
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: text = "missing attachment"; break;
+    case GL_FRAMEBUFFER_UNSUPPORTED: text = "unsupported format combination"; break;
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS: text = "incomplete layer targets"; break;
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: text = "incomplete multisample"; break;
+    default: break;
+  }
+  throw std::runtime_error(what + ": framebuffer incomplete (" + text + ")");
+}
+
+VertexArray::VertexArray() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  name_ = detail::GlName<detail::VertexArrayTraits>(id);
+}
+
+void VertexArray::setAttribute(GLuint index, const Buffer& buffer, std::size_t offset, int stride, int components) {
+  glEnableVertexArrayAttrib(id(), index);
+  glVertexArrayVertexBuffer(id(), index, buffer.id(), static_cast<GLintptr>(offset), stride);
+  glVertexArrayAttribFormat(id(), index, components, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(id(), index, index);
+}
+
+void VertexArray::setIndexBuffer(const Buffer& buffer) { glVertexArrayElementBuffer(id(), buffer.id()); }
+
+Query::Query(GLenum target) : target_(target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  name_ = detail::GlName<detail::QueryTraits>(id);
+}
+
+bool Query::resultAvailable() const {
+  GLint available = 0;
+  glGetQueryObjectiv(id(), GL_QUERY_RESULT_AVAILABLE, &available);
+  return available != 0;
+}
+
+GLuint64 Query::result() const {
+  GLuint64 value = 0;
+  glGetQueryObjectui64v(id(), GL_QUERY_RESULT, &value);
+  return value;
+}
+
+TransformFeedback::TransformFeedback() {
+  GLuint id = 0;
+  glCreateTransformFeedbacks(1, &id);
+  name_ = detail::GlName<detail::TransformFeedbackTraits>(id);
+}
+
+void TransformFeedback::bindBuffer(GLuint index, const Buffer& buffer) {
+  glTransformFeedbackBufferBase(id(), index, buffer.id());
+}
+
+}  // namespace tallow::gpu

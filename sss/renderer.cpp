@@ -1,0 +1,107 @@
+#include "sss/renderer.h"
+
+#include <stdexcept>
+
+#include "gpu/readback.h"
+
+namespace tallow::sss {
+
+void checkLimits(const Scene& scene, const RenderSettings& settings) {
+  int dirCount = 0, pointCount = 0;
+  for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dirCount : pointCount)++;
+  if (dirCount > kMaxDirectionalLights)
+    throw std::invalid_argument("the scene has " + std::to_string(dirCount) + " directional lights; at most " +
+                                std::to_string(kMaxDirectionalLights) + " are supported");
+  if (pointCount > kMaxPointLights)
+    throw std::invalid_argument("the scene has " + std::to_string(pointCount) + " point lights; at most " +
+                                std::to_string(kMaxPointLights) + " are supported");
+  GLint maxTexture = 0, maxLayers = 0, maxViewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+  if (settings.shadowMapSize > maxTexture)
+    throw std::invalid_argument("render.shadow_map_size: " + std::to_string(settings.shadowMapSize) +
+                                " exceeds this GPU's GL_MAX_TEXTURE_SIZE of " + std::to_string(maxTexture));
+  if (settings.width > maxTexture || settings.height > maxTexture || settings.width > maxViewport[0] ||
+      settings.height > maxViewport[1])
+    throw std::invalid_argument("render size " + std::to_string(settings.width) + "x" +
+                                std::to_string(settings.height) + " exceeds this GPU's limit of " +
+                                std::to_string(std::min(maxTexture, maxViewport[0])) + " pixels per side");
+  if (6 * pointCount > maxLayers)
+    throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
+}
+
+Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
+    : geometry_(scene), shadows_(shaders), surface_(shaders), display_(shaders) {
+  checkLimits(scene, settings);
+  ensureTargets(settings.width, settings.height);
+}
+
+std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings& settings) {
+  std::vector<PlannedPass> passes;
+  int dirShadowed = 0, pointShadowed = 0;
+  for (const Light& l : scene.lights)
+    if (l.castsShadows) (l.kind == LightKind::Directional ? dirShadowed : pointShadowed)++;
+  if (ShadowPass::needsDirectional(scene, settings))
+    passes.push_back({"shadow.directional", std::to_string(dirShadowed) +
+                                                " directional light(s) cast shadows: one orthographic depth layer each"});
+  if (ShadowPass::needsPoint(scene, settings))
+    passes.push_back({"shadow.point", std::to_string(pointShadowed) +
+                                          " point light(s) cast shadows: one depth cube each (6 faces)"});
+  passes.push_back({"surface", std::to_string(scene.objects.size()) +
+                                   " object(s) drawn Lambertian with direct light, shadows and ambient (no "
+                                   "subsurface method implemented yet: translucent objects use their albedo)"});
+  return passes;
+}
+
+void Renderer::ensureTargets(int width, int height) {
+  if (radiance_.id() && radiance_.width() == width && radiance_.height() == height) return;
+  radiance_ = gpu::Texture::create2D(GL_RGBA32F, width, height);
+  radiance_.setFilter(GL_NEAREST, GL_NEAREST);
+  depth_ = gpu::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+  target_ = gpu::Framebuffer();
+  target_.attachColor(0, radiance_);
+  target_.attachDepth(depth_);
+  target_.setDrawBuffers(1);
+  target_.checkComplete("camera target");
+}
+
+FrameTimings Renderer::render(const Scene& scene, const RenderSettings& settings, double /*timeS: static scenes*/) {
+  checkLimits(scene, settings);
+  ensureTargets(settings.width, settings.height);
+  geometry_.update(scene);
+  timer_.beginFrame();
+  shadows_.reset(scene.lights.size());
+  for (const PlannedPass& pass : plan(scene, settings)) {
+    gpu::GpuScope scope(timer_, pass.name);
+    if (pass.name == "shadow.directional") {
+      shadows_.renderDirectional(scene, settings, geometry_);
+    } else if (pass.name == "shadow.point") {
+      shadows_.renderPoint(scene, settings, geometry_);
+    } else if (pass.name == "surface") {
+      const glm::vec4 clear(scene.background, 1.0f);
+      glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &clear.x);
+      const float one = 1.0f;
+      glClearNamedFramebufferfv(target_.id(), GL_DEPTH, 0, &one);
+      const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+      const CameraView camera = cameraView(scene.camera, aspect, geometry_.worldBounds());
+      surface_.render(scene, settings, geometry_, camera, shadows_, target_, settings.width, settings.height);
+    }
+  }
+  FrameTimings t;
+  t.passes = timer_.collect();
+  for (const auto& p : t.passes) t.gpuTotalMs += p.gpuMs;
+  return t;
+}
+
+void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap) {
+  display_.render(radiance_, target, width, height, toneMap);
+}
+
+gpu::Image Renderer::readRadiance() const { return gpu::readColor(target_, 0, radiance_.width(), radiance_.height()); }
+
+std::size_t Renderer::gpuBytes() const {
+  return radiance_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes();
+}
+
+}  // namespace tallow::sss

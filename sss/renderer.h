@@ -1,0 +1,66 @@
+#pragma once
+// One frame as a plan of passes: only the passes this scene needs run (no point-light cube maps
+// without a point light that casts shadows, no shadow maps with shadows off…). plan() says which
+// and why (`--explain`); render() runs them and times each on the GPU.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpu/gl_objects.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/image.h"
+#include "gpu/shader_library.h"
+#include "sss/display_pass.h"
+#include "sss/render_settings.h"
+#include "sss/scene.h"
+#include "sss/scene_geometry.h"
+#include "sss/shadow_pass.h"
+#include "sss/surface_pass.h"
+
+namespace tallow::sss {
+
+struct PlannedPass {
+  std::string name;    ///< as in stats.json: "shadow.directional", "surface", …
+  std::string reason;  ///< why this scene needs it
+};
+
+struct FrameTimings {
+  std::vector<gpu::PassTiming> passes;  ///< GPU ms per pass that ran
+  double gpuTotalMs = 0.0;
+};
+
+/// Checks settings and scene against the limits of the renderer and of the current GL context;
+/// throws std::invalid_argument with one line (e.g. a shadow map larger than GL_MAX_TEXTURE_SIZE).
+void checkLimits(const Scene& scene, const RenderSettings& settings);
+
+class Renderer {
+ public:
+  /// Compiles the passes and uploads the scene's shapes. Needs a current GL 4.5 context.
+  Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings);
+
+  static std::vector<PlannedPass> plan(const Scene& scene, const RenderSettings& settings);
+
+  /// Renders the frame at time `timeS` into the HDR target (settings.width × settings.height).
+  /// `scene` must have the same objects as at construction; transforms and parameters may change.
+  FrameTimings render(const Scene& scene, const RenderSettings& settings, double timeS);
+  /// Tone maps the last frame into framebuffer `target` (0 = window) of the given size.
+  void display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap);
+
+  gpu::Image readRadiance() const;  ///< the last frame, linear, top row first
+  const gpu::Texture& radiance() const { return radiance_; }
+  std::size_t triangleCount() const { return geometry_.triangleCount(); }
+  std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes
+
+ private:
+  void ensureTargets(int width, int height);
+
+  SceneGeometry geometry_;
+  ShadowPass shadows_;
+  SurfacePass surface_;
+  DisplayPass display_;
+  gpu::GpuTimer timer_;
+  gpu::Texture radiance_, depth_;
+  gpu::Framebuffer target_;
+};
+
+}  // namespace tallow::sss

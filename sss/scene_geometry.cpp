@@ -1,0 +1,114 @@
+#include "sss/scene_geometry.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <stdexcept>
+
+#include "geometry/ply_reader.h"
+#include "geometry/primitives.h"
+
+namespace tallow::sss {
+namespace {
+
+constexpr int kSphereRings = 96;     // fine enough that shading error stays below 1/255
+constexpr int kSphereSegments = 192;
+
+std::string shapeKey(const SceneObject& o) {
+  switch (o.shape) {
+    case ShapeKind::Mesh: return "mesh:" + o.meshPath.string();
+    case ShapeKind::Sphere: return "sphere";
+    case ShapeKind::Plane: return "plane";
+    case ShapeKind::Box: return "box";
+  }
+  return "?";
+}
+
+}  // namespace
+
+geometry::TriangleMesh SceneGeometry::shapeMesh(const SceneObject& object) {
+  switch (object.shape) {
+    case ShapeKind::Mesh: return geometry::readPly(object.meshPath);
+    case ShapeKind::Sphere: return geometry::makeSphere(kSphereRings, kSphereSegments);
+    case ShapeKind::Plane: return geometry::makePlane();
+    case ShapeKind::Box: return geometry::makeBox();
+  }
+  throw std::logic_error("unknown shape");
+}
+
+glm::mat4 SceneGeometry::modelMatrix(const SceneObject& o, const geometry::Aabb& local) {
+  const Transform& t = o.transform;
+  glm::mat4 rotation(1.0f);
+  rotation = glm::rotate(rotation, glm::radians(t.rotationDeg.z), glm::vec3(0, 0, 1));
+  rotation = glm::rotate(rotation, glm::radians(t.rotationDeg.y), glm::vec3(0, 1, 0));
+  rotation = glm::rotate(rotation, glm::radians(t.rotationDeg.x), glm::vec3(1, 0, 0));
+  glm::mat4 shape(1.0f);
+  switch (o.shape) {
+    case ShapeKind::Mesh: {
+      const glm::vec3 size = local.size();
+      const float extent = std::max(size.x, std::max(size.y, size.z));
+      const float s = extent > 0.0f ? t.scale / extent : 1.0f;
+      const glm::vec3 anchor(local.centre().x, local.min.y, local.centre().z);
+      shape = glm::scale(glm::mat4(1.0f), glm::vec3(s)) * glm::translate(glm::mat4(1.0f), -anchor);
+      break;
+    }
+    case ShapeKind::Sphere: shape = glm::scale(glm::mat4(1.0f), glm::vec3(t.scale)); break;
+    case ShapeKind::Plane: shape = glm::scale(glm::mat4(1.0f), glm::vec3(o.size.x, 1.0f, o.size.z) * t.scale); break;
+    case ShapeKind::Box: shape = glm::scale(glm::mat4(1.0f), o.size * t.scale); break;
+  }
+  return glm::translate(glm::mat4(1.0f), t.position) * rotation * shape;
+}
+
+SceneGeometry::SceneGeometry(const Scene& scene) {
+  for (const SceneObject& o : scene.objects) {
+    const std::string key = shapeKey(o);
+    auto it = shapes_.find(key);
+    if (it == shapes_.end()) {
+      geometry::TriangleMesh mesh = shapeMesh(o);
+      if (mesh.normals.size() != mesh.positions.size()) geometry::computeVertexNormals(mesh);
+      Shape shape;
+      shape.localBounds = mesh.bounds();
+      shape.gpu = std::make_unique<GpuMesh>(mesh);
+      it = shapes_.emplace(key, std::move(shape)).first;
+    }
+    objectShapes_.push_back(&it->second);
+  }
+  update(scene);
+}
+
+void SceneGeometry::update(const Scene& scene) {
+  if (scene.objects.size() != objectShapes_.size())
+    throw std::logic_error("SceneGeometry::update: the scene's objects changed; rebuild instead");
+  items_.clear();
+  bounds_ = geometry::Aabb{};
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    const Shape& shape = *objectShapes_[i];
+    DrawItem item;
+    item.objectIndex = static_cast<int>(i);
+    item.mesh = shape.gpu.get();
+    item.model = modelMatrix(o, shape.localBounds);
+    item.normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
+    item.albedo = o.albedo;
+    items_.push_back(item);
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 corner((c & 1) ? shape.localBounds.max.x : shape.localBounds.min.x,
+                             (c & 2) ? shape.localBounds.max.y : shape.localBounds.min.y,
+                             (c & 4) ? shape.localBounds.max.z : shape.localBounds.min.z);
+      bounds_.extend(glm::vec3(item.model * glm::vec4(corner, 1.0f)));
+    }
+  }
+}
+
+std::size_t SceneGeometry::triangleCount() const {
+  std::size_t n = 0;
+  for (const DrawItem& item : items_) n += item.mesh->triangleCount();
+  return n;
+}
+
+std::size_t SceneGeometry::bytes() const {
+  std::size_t n = 0;
+  for (const auto& [key, shape] : shapes_) n += shape.gpu->bytes();
+  return n;
+}
+
+}  // namespace tallow::sss

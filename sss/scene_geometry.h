@@ -1,0 +1,59 @@
+#pragma once
+// The scene's shapes on the GPU with their world transforms: meshes read from files (once per
+// path) and analytic primitives. Placement rules (documented in docs/presets.md):
+//   mesh   — uniformly scaled so that its largest bounding-box extent is `scale` metres, rotated,
+//            and placed with its bounding-box bottom centre at `position`;
+//   sphere — radius `scale`, centred at `position`;
+//   plane  — `size.x × size.z` times `scale`, normal +y (before rotation), centred at `position`;
+//   box    — `size` times `scale`, centred at `position`.
+#include <glm/glm.hpp>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+#include "sss/gpu_mesh.h"
+#include "sss/scene.h"
+
+namespace tallow::sss {
+
+struct DrawItem {
+  int objectIndex = 0;
+  const GpuMesh* mesh = nullptr;
+  glm::mat4 model{1.0f};
+  glm::mat3 normalMatrix{1.0f};
+  glm::vec3 albedo{0.8f};
+};
+
+class SceneGeometry {
+ public:
+  /// Loads every mesh file of `scene` (throws std::runtime_error naming the file when one is
+  /// missing or broken) and uploads every shape.
+  explicit SceneGeometry(const Scene& scene);
+  /// Recomputes transforms and albedos after parameters changed (meshes are not reloaded).
+  void update(const Scene& scene);
+
+  const std::vector<DrawItem>& items() const { return items_; }
+  geometry::Aabb worldBounds() const { return bounds_; }
+  std::size_t triangleCount() const;
+  std::size_t bytes() const;
+
+  /// The object-space mesh of a shape, as it is drawn (for tests and the CPU reference).
+  static geometry::TriangleMesh shapeMesh(const SceneObject& object);
+  /// Object → world transform of `object` whose object-space bounds are `local`.
+  static glm::mat4 modelMatrix(const SceneObject& object, const geometry::Aabb& local);
+
+ private:
+  struct Shape {
+    std::unique_ptr<GpuMesh> gpu;
+    geometry::Aabb localBounds;
+  };
+  std::map<std::string, Shape> shapes_;  ///< by mesh path or primitive name
+  std::vector<const Shape*> objectShapes_;
+  std::vector<DrawItem> items_;
+  geometry::Aabb bounds_;
+};
+
+}  // namespace tallow::sss

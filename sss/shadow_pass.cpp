@@ -1,0 +1,168 @@
+#include "sss/shadow_pass.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+
+#include "sss/view_setup.h"
+
+namespace tallow::sss {
+namespace {
+
+constexpr float kPointNearFraction = 1e-3f;  // near plane of a point light's cube, × its range
+
+gpu::Texture makeDepthTexture(bool cube, int size, int layers) {
+  gpu::Texture t = cube ? gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, size, layers)
+                        : gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, layers);
+  t.setFilter(GL_LINEAR, GL_LINEAR);  // bilinear PCF per comparison tap
+  t.setWrap(GL_CLAMP_TO_BORDER);
+  t.setBorderColor(1, 1, 1, 1);  // outside the map: lit
+  t.setDepthCompare(true);
+  return t;
+}
+
+/// Draws every shape with `viewProjection` into the bound framebuffer.
+void drawDepth(gpu::Program& program, const SceneGeometry& geometry, const glm::mat4& viewProjection) {
+  program.set("uLightViewProjection", viewProjection);
+  for (const DrawItem& item : geometry.items()) {
+    program.set("uModel", item.model);
+    item.mesh->draw();
+  }
+}
+
+/// Depth test and write on, no colour; restored to GL defaults at the end of the scope.
+struct DepthOnlyState {
+  DepthOnlyState() {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+  }
+  ~DepthOnlyState() {
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+};
+
+}  // namespace
+
+ShadowPass::ShadowPass(const gpu::ShaderLibrary& shaders)
+    : program_(shaders, {{{GL_VERTEX_SHADER, "shadow_depth.vert"}, {GL_FRAGMENT_SHADER, "shadow_depth.frag"}}}),
+      dummyDirectional_(makeDepthTexture(false, 1, 1)),
+      dummyPoint_(makeDepthTexture(true, 1, 1)) {
+  const float one = 1.0f;
+  glClearTexImage(dummyDirectional_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+  glClearTexImage(dummyPoint_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+}
+
+bool ShadowPass::needsDirectional(const Scene& scene, const RenderSettings& settings) {
+  return settings.shadows && std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+           return l.castsShadows && l.kind == LightKind::Directional;
+         });
+}
+
+bool ShadowPass::needsPoint(const Scene& scene, const RenderSettings& settings) {
+  return settings.shadows && std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+           return l.castsShadows && l.kind == LightKind::Point;
+         });
+}
+
+void ShadowPass::reset(std::size_t lightCount) {
+  layers_.directionalLayer.assign(lightCount, -1);
+  layers_.directionalMatrix.assign(lightCount, glm::mat4(1.0f));
+  layers_.directionalTexel.assign(lightCount, 0.0f);
+  layers_.pointCube.assign(lightCount, -1);
+  layers_.pointRange.assign(lightCount, 1.0f);
+}
+
+void ShadowPass::ensure(gpu::Texture& texture, bool cube, int size, int layers) {
+  const int depth = cube ? 6 * layers : layers;
+  if (texture.id() && texture.width() == size && texture.depth() == depth) return;
+  texture = makeDepthTexture(cube, size, layers);
+}
+
+void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+  const std::size_t n = scene.lights.size();
+  if (!needsDirectional(scene, settings)) return;
+  int count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (scene.lights[i].castsShadows && scene.lights[i].kind == LightKind::Directional)
+      layers_.directionalLayer[i] = count++;
+  const int size = settings.shadowMapSize;
+  ensure(directional_, false, size, count);
+
+  DepthOnlyState state;
+  program_.use();
+  program_.set("uStoreDistance", 0);
+  glViewport(0, 0, size, size);
+  // [-1,1]³ → [0,1]³ for texture lookup.
+  const glm::mat4 toTexture = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  for (std::size_t i = 0; i < n; ++i) {
+    const int layer = layers_.directionalLayer[i];
+    if (layer < 0) continue;
+    gpu::Framebuffer fb;
+    fb.attachDepth(directional_, 0, layer);
+    fb.setDrawBuffers(0);
+    fb.checkComplete("directional shadow map");
+    fb.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    float texel = 0.0f;
+    const glm::mat4 vp = directionalShadowViewProjection(scene.lights[i].direction, geometry.worldBounds(), size, texel);
+    drawDepth(program_, geometry, vp);
+    layers_.directionalMatrix[i] = toTexture * vp;
+    layers_.directionalTexel[i] = texel;
+  }
+}
+
+void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+  const std::size_t n = scene.lights.size();
+  if (!needsPoint(scene, settings)) return;
+  int count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (scene.lights[i].castsShadows && scene.lights[i].kind == LightKind::Point) layers_.pointCube[i] = count++;
+  // Cube faces are smaller than a directional map: each covers only a quarter of the view sphere
+  // around the light, so half the size gives a similar texel density for nearby receivers.
+  const int size = std::max(16, settings.shadowMapSize / 2);
+  ensure(point_, true, size, count);
+  layers_.pointTexelAngle = glm::radians(90.0f) / static_cast<float>(size);
+
+  DepthOnlyState state;
+  program_.use();
+  program_.set("uStoreDistance", 1);
+  glViewport(0, 0, size, size);
+  const geometry::Aabb bounds = geometry.worldBounds();
+  for (std::size_t i = 0; i < n; ++i) {
+    const int cube = layers_.pointCube[i];
+    if (cube < 0) continue;
+    const glm::vec3 p = scene.lights[i].position;
+    // The range reaches the farthest corner of the scene's bounds.
+    float range = 1e-3f;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+                             (c & 4) ? bounds.max.z : bounds.min.z);
+      range = std::max(range, glm::length(corner - p) * 1.01f);
+    }
+    layers_.pointRange[i] = range;
+    program_.set("uLightPosition", p);
+    program_.set("uRange", range);
+    const auto faces = cubeFaceViewProjections(p, range * kPointNearFraction, range);
+    for (int f = 0; f < 6; ++f) {
+      gpu::Framebuffer fb;
+      fb.attachDepth(point_, 0, 6 * cube + f);
+      fb.setDrawBuffers(0);
+      fb.checkComplete("point shadow map");
+      fb.bind();
+      glClear(GL_DEPTH_BUFFER_BIT);
+      drawDepth(program_, geometry, faces[static_cast<std::size_t>(f)]);
+    }
+  }
+}
+
+void ShadowPass::bind(GLuint directionalUnit, GLuint pointUnit) const {
+  (directional_.id() ? directional_ : dummyDirectional_).bind(directionalUnit);
+  (point_.id() ? point_ : dummyPoint_).bind(pointUnit);
+}
+
+}  // namespace tallow::sss

@@ -1,0 +1,53 @@
+#pragma once
+// Shadow maps of the lights that cast shadows: one layer of a 2D depth array per directional
+// light (orthographic, fitted to the scene), one cube of a cube-map array per point light
+// (distance / range as depth). Receivers sample them with hardware comparison.
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "gpu/gl_objects.h"
+#include "gpu/program.h"
+#include "sss/render_settings.h"
+#include "sss/scene.h"
+#include "sss/scene_geometry.h"
+
+namespace tallow::sss {
+
+struct ShadowLayers {
+  std::vector<int> directionalLayer;  ///< per scene light: layer, or −1
+  std::vector<int> pointCube;         ///< per scene light: cube, or −1
+  std::vector<glm::mat4> directionalMatrix;  ///< per scene light: world → [0,1]³
+  std::vector<float> directionalTexel;       ///< per scene light: world size of one texel
+  std::vector<float> pointRange;             ///< per scene light
+  float pointTexelAngle = 0.0f;
+};
+
+class ShadowPass {
+ public:
+  explicit ShadowPass(const gpu::ShaderLibrary& shaders);
+
+  static bool needsDirectional(const Scene& scene, const RenderSettings& settings);
+  static bool needsPoint(const Scene& scene, const RenderSettings& settings);
+
+  /// Marks every light of a scene with `lightCount` lights unshadowed; call before rendering.
+  void reset(std::size_t lightCount);
+  /// Renders the directional-light shadow maps (if any light needs one).
+  void renderDirectional(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
+  /// Renders the point-light cube shadow maps (if any light needs one).
+  void renderPoint(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
+
+  const ShadowLayers& layers() const { return layers_; }
+  /// Bind to the units the receiver shader expects; unused maps get a 1-texel dummy (lit).
+  void bind(GLuint directionalUnit, GLuint pointUnit) const;
+  std::size_t bytes() const { return directional_.bytes() + point_.bytes(); }
+
+ private:
+  void ensure(gpu::Texture& texture, bool cube, int size, int layers);
+  gpu::Program program_;
+  gpu::Texture directional_, point_;
+  gpu::Texture dummyDirectional_, dummyPoint_;
+  ShadowLayers layers_;
+};
+
+}  // namespace tallow::sss

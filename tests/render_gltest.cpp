@@ -1,0 +1,143 @@
+// Headless renders checked against independent CPU computations of the same scene.
+#include <gtest/gtest.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+#include "support/render_support.h"
+
+namespace tallow {
+namespace {
+
+constexpr float kOneLevel = 1.0f / 255.0f;  // one step of an 8-bit display value
+
+// Lambertian sphere (tests/data/lambert_sphere.json): albedo 1 and irradiance π give radiance
+// L = (1/π)·π·max(0, n·l) = max(0, n·l), with n the exact sphere normal at the pixel centre.
+struct SphereExpectation {
+  int width = 128, height = 128;
+  float viewHeight = 2.5f;  // orthographic camera height in the preset
+  glm::vec3 light = glm::normalize(glm::vec3(1.0f));
+  // The GPU draws a 96-ring × 192-segment UV sphere (sss/scene_geometry.cpp). Where the pixel centre
+  // lies in the outermost ring of triangles seen from the camera (screen radius within
+  // 1 − cos(π/96) of the silhouette, < 0.03 px wide here), the flat triangles and the exact sphere
+  // differ in coverage and normal by more than 1/255; those pixels are not compared.
+  float silhouetteBand = 1.0f - std::cos(3.14159265f / 96.0f);
+
+  // −1 = pixel in the excluded band; otherwise the expected radiance.
+  float expected(int x, int y) const {
+    const float u = ((x + 0.5f) / width * 2.0f - 1.0f) * viewHeight * 0.5f * width / height;
+    const float v = (1.0f - (y + 0.5f) / height * 2.0f) * viewHeight * 0.5f;
+    const float r2 = u * u + v * v;
+    const float r = std::sqrt(r2);
+    if (r >= 1.0f - silhouetteBand && r <= 1.0f + silhouetteBand) return -1.0f;
+    if (r2 >= 1.0f) return 0.0f;  // background
+    const glm::vec3 n(u, v, std::sqrt(1.0f - r2));
+    return std::max(0.0f, glm::dot(n, light));
+  }
+};
+
+void expectLambertSphere(const gpu::Image& image, float minCosine) {
+  const SphereExpectation sphere;
+  ASSERT_EQ(image.width, sphere.width);
+  ASSERT_EQ(image.height, sphere.height);
+  int compared = 0, excluded = 0, band = 0, lit = 0;
+  float worst = 0.0f;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const float e = sphere.expected(x, y);
+      if (e < 0.0f || (e > 0.0f && e < minCosine)) {
+        ++excluded;
+        band += e < 0.0f;
+        continue;
+      }
+      const glm::vec4 p = image.at(x, y);
+      for (int c = 0; c < 3; ++c) {
+        const float err = std::abs(p[c] - e);
+        worst = std::max(worst, err);
+        EXPECT_LE(err, kOneLevel) << "pixel (" << x << ", " << y << ") channel " << c << ": " << p[c] << " vs " << e;
+        if (err > kOneLevel) return;  // one report is enough
+      }
+      ++compared;
+      lit += e > 0.0f;
+    }
+  // The silhouette band is a few pixels at most; if many were skipped the test would prove little.
+  EXPECT_LT(band, 20);
+  EXPECT_EQ(compared + excluded, image.width * image.height);
+  EXPECT_GT(lit, 3000);  // about half the disc of radius 51 px is lit
+  std::printf("lambert sphere: %d pixels within %.5f (worst %.6f), %d excluded (%d on the silhouette)\n", compared,
+              kOneLevel, worst, excluded, band);
+}
+
+TEST(RenderGL, LambertSphereMatchesAnalyticShadingWithoutShadows) {
+  const auto result = test::renderPreset(test::testScene("lambert_sphere"), {"render.shadows=false"});
+  expectLambertSphere(result.image, 0.0f);
+}
+
+TEST(RenderGL, ShadowMapDoesNotDarkenTheLitSideOfAConvexSphere) {
+  // A convex body never shadows its lit side; away from the terminator (n·l > 0.1, where the
+  // shadow map's normal-offset bias is ample) every pixel must still match the analytic value.
+  const auto result = test::renderPreset(test::testScene("lambert_sphere"), {"render.shadows=true"});
+  expectLambertSphere(result.image, 0.1f);
+}
+
+// tests/data/shadow_plate.json: a plate x,z ∈ [−0.5, 0.5], y ∈ [0.99, 1.01] over the ground y = 0,
+// light direction l = (2, 1, 0)/√5. A ground point p is shadowed iff p + t·l hits the plate, i.e.
+// its shadow is the plate's footprint shifted by −y·(l.x/l.y) = −2y in x: x ∈ [−2.52, −1.48],
+// z ∈ [−0.5, 0.5]. Lit ground has L = (1/π)·π·l.y = 1/√5.
+struct ShadowPlate {
+  int size = 128;
+  glm::vec2 centre{-2.0f, 0.0f};
+  float viewHeight = 2.0f;
+  glm::vec2 shadowMin{-0.5f - 2.0f * 1.01f, -0.5f};
+  glm::vec2 shadowMax{0.5f - 2.0f * 0.99f, 0.5f};
+  float litRadiance = 1.0f / std::sqrt(5.0f);
+
+  // World (x, z) at a pixel centre. Camera up is −z, so image rows go toward +z.
+  glm::vec2 world(int px, int py) const {
+    const float s = viewHeight / size;
+    return {centre.x + (px + 0.5f) * s - viewHeight * 0.5f, centre.y + (py + 0.5f) * s - viewHeight * 0.5f};
+  }
+};
+
+TEST(RenderGL, ShadowMapDarkensExactlyTheAnalyticShadow) {
+  const auto result = test::renderPreset(test::testScene("shadow_plate"), {"render.pcf_radius=1", "render.shadow_bias=1.5"});
+  const ShadowPlate plate;
+  // Width of the uncertain border, from the shadow map's resolution: the scene's bounding sphere
+  // (radius 3.42 m incl. 1 % margin) over 2048 texels gives 3.34 mm texels. PCF radius 1 plus the
+  // bilinear comparison blur ±D = 2 texels across the light, which a ground seen at elevation
+  // asin(l.y) stretches by 1/l.y = √5; the normal offset of D + 1.5 = 3.5 texels (lights.glsl)
+  // lifts the lookup point, which moves the boundary by 3.5·(l.x/l.y) = 7 texels along x.
+  const float texel = 2.0f * 3.42f / 2048.0f;
+  const float margin = (2.0f * std::sqrt(5.0f) + 7.0f) * texel;
+  int inside = 0, outside = 0;
+  for (int y = 0; y < plate.size; ++y)
+    for (int x = 0; x < plate.size; ++x) {
+      const glm::vec2 w = plate.world(x, y);
+      const glm::vec4 p = result.image.at(x, y);
+      const bool deepInside = w.x > plate.shadowMin.x + margin && w.x < plate.shadowMax.x - margin &&
+                              w.y > plate.shadowMin.y + margin && w.y < plate.shadowMax.y - margin;
+      const bool clearlyOutside = w.x < plate.shadowMin.x - margin || w.x > plate.shadowMax.x + margin ||
+                                  w.y < plate.shadowMin.y - margin || w.y > plate.shadowMax.y + margin;
+      if (deepInside) {
+        ++inside;
+        ASSERT_LE(p.r, kOneLevel) << "shadowed pixel (" << x << ", " << y << ") is lit: " << p.r;
+      } else if (clearlyOutside) {
+        ++outside;
+        ASSERT_NEAR(p.r, plate.litRadiance, kOneLevel) << "lit pixel (" << x << ", " << y << ")";
+      }
+    }
+  // The shadow covers 1.04 m × 1 m of the 2 m × 2 m view: about a quarter of the pixels.
+  EXPECT_GT(inside, 3200);
+  EXPECT_GT(outside, 9000);
+}
+
+TEST(RenderGL, WithShadowsOffTheSameGroundIsLitEverywhere) {
+  const auto result = test::renderPreset(test::testScene("shadow_plate"), {"render.shadows=false"});
+  const ShadowPlate plate;
+  for (int y = 0; y < plate.size; ++y)
+    for (int x = 0; x < plate.size; ++x) ASSERT_NEAR(result.image.at(x, y).r, plate.litRadiance, kOneLevel);
+}
+
+}  // namespace
+}  // namespace tallow

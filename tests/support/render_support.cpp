@@ -1,0 +1,29 @@
+#include "support/render_support.h"
+
+#include "app/setup.h"
+
+namespace tallow::test {
+
+RenderResult renderPreset(const std::string& preset, const std::vector<std::string>& sets, gpu::GlBackend backend) {
+  app::SceneOptions options;
+  options.preset = preset;
+  options.sets = sets;
+  const app::LoadedScene loaded = app::loadScene(options);
+  gpu::ContextOptions contextOptions;
+  contextOptions.backend = backend;
+  contextOptions.visible = false;
+  auto context = gpu::GlContext::create(contextOptions);
+  const gpu::ShaderLibrary shaders;
+  sss::Renderer renderer(shaders, loaded.config.scene, loaded.config.render);
+  RenderResult result;
+  result.timings = renderer.render(loaded.config.scene, loaded.config.render, 0.0);
+  result.image = renderer.readRadiance();
+  result.gl = context->info();
+  return result;
+}
+
+std::string testScene(const std::string& name) {
+  return std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/" + name + ".json";
+}
+
+}  // namespace tallow::test
