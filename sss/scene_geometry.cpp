@@ -80,6 +80,7 @@ void SceneGeometry::update(const Scene& scene) {
     throw std::logic_error("SceneGeometry::update: the scene's objects changed; rebuild instead");
   items_.clear();
   bounds_ = geometry::Aabb{};
+  casterBounds_ = geometry::Aabb{};
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     const Shape& shape = *objectShapes_[i];
@@ -94,7 +95,9 @@ void SceneGeometry::update(const Scene& scene) {
       const glm::vec3 corner((c & 1) ? shape.localBounds.max.x : shape.localBounds.min.x,
                              (c & 2) ? shape.localBounds.max.y : shape.localBounds.min.y,
                              (c & 4) ? shape.localBounds.max.z : shape.localBounds.min.z);
-      bounds_.extend(glm::vec3(item.model * glm::vec4(corner, 1.0f)));
+      const glm::vec3 world(item.model * glm::vec4(corner, 1.0f));
+      bounds_.extend(world);
+      if (o.shape != ShapeKind::Plane) casterBounds_.extend(world);
     }
   }
 }

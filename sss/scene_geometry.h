@@ -37,6 +37,9 @@ class SceneGeometry {
 
   const std::vector<DrawItem>& items() const { return items_; }
   geometry::Aabb worldBounds() const { return bounds_; }
+  /// Bounds of the shapes that shadow maps are fitted to: every shape but planes (ground planes
+  /// are large receivers with nothing beneath them to shadow); all shapes when only planes exist.
+  geometry::Aabb casterBounds() const { return casterBounds_.empty() ? bounds_ : casterBounds_; }
   std::size_t triangleCount() const;
   std::size_t bytes() const;
 
@@ -53,7 +56,7 @@ class SceneGeometry {
   std::map<std::string, Shape> shapes_;  ///< by mesh path or primitive name
   std::vector<const Shape*> objectShapes_;
   std::vector<DrawItem> items_;
-  geometry::Aabb bounds_;
+  geometry::Aabb bounds_, casterBounds_;
 };
 
 }  // namespace tallow::sss

@@ -109,7 +109,8 @@ void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& set
     fb.bind();
     glClear(GL_DEPTH_BUFFER_BIT);
     float texel = 0.0f;
-    const glm::mat4 vp = directionalShadowViewProjection(scene.lights[i].direction, geometry.worldBounds(), size, texel);
+    const glm::mat4 vp = directionalShadowViewProjection(scene.lights[i].direction, geometry.casterBounds(),
+                                                           geometry.worldBounds(), size, texel);
     drawDepth(program_, geometry, vp);
     layers_.directionalMatrix[i] = toTexture * vp;
     layers_.directionalTexel[i] = texel;

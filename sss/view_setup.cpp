@@ -36,13 +36,16 @@ CameraView cameraView(const Camera& camera, float aspect, const geometry::Aabb& 
   return v;
 }
 
-glm::mat4 directionalShadowViewProjection(const glm::vec3& towardLight, const geometry::Aabb& bounds, int size,
-                                          float& texelWorld) {
-  const glm::vec3 centre = bounds.centre();
-  const float radius = std::max(0.5f * glm::length(bounds.size()), 1e-6f) * 1.01f;
+glm::mat4 directionalShadowViewProjection(const glm::vec3& towardLight, const geometry::Aabb& casters,
+                                          const geometry::Aabb& world, int size, float& texelWorld) {
+  const glm::vec3 centre = casters.centre();
+  const float radius = std::max(0.5f * glm::length(casters.size()), 1e-6f) * 1.01f;
+  // The eye stands beyond all geometry toward the light; the far plane lies beyond all of it too.
+  const float reach = glm::length(world.centre() - centre) + 0.5f * glm::length(world.size()) * 1.01f;
+  const float depth = std::max(reach, radius);
   const glm::vec3 forward = -glm::normalize(towardLight);
-  const glm::mat4 view = glm::lookAt(centre - forward * radius, centre, safeUp(forward, glm::vec3(0, 1, 0)));
-  const glm::mat4 projection = glm::ortho(-radius, radius, -radius, radius, 0.0f, 2.0f * radius);
+  const glm::mat4 view = glm::lookAt(centre - forward * depth, centre, safeUp(forward, glm::vec3(0, 1, 0)));
+  const glm::mat4 projection = glm::ortho(-radius, radius, -radius, radius, 0.0f, 2.0f * depth);
   texelWorld = 2.0f * radius / static_cast<float>(size);
   return projection * view;
 }

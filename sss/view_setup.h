@@ -22,10 +22,11 @@ struct CameraView {
 /// `bounds` so that depth precision is spent where the scene is.
 CameraView cameraView(const Camera& camera, float aspect, const geometry::Aabb& bounds);
 
-/// Orthographic view along a directional light (`towardLight` unit) enclosing the bounding sphere
-/// of `bounds`. `texelWorld` receives the world size of one texel of a `size`² map.
-glm::mat4 directionalShadowViewProjection(const glm::vec3& towardLight, const geometry::Aabb& bounds, int size,
-                                          float& texelWorld);
+/// Orthographic view along a directional light (`towardLight` unit) whose square covers the
+/// bounding sphere of `casters` and whose depth range covers all of `world` (receivers behind the
+/// casters must be inside it). `texelWorld` receives the world size of one texel of a `size`² map.
+glm::mat4 directionalShadowViewProjection(const glm::vec3& towardLight, const geometry::Aabb& casters,
+                                          const geometry::Aabb& world, int size, float& texelWorld);
 
 /// The six cube-face view-projections of a point light (GL face order +X, −X, +Y, −Y, +Z, −Z),
 /// 90° frusta from `near` to `range`.

@@ -5,6 +5,9 @@
 
 #include <cmath>
 
+#include "app/setup.h"
+#include "gpu/readback.h"
+#include "gpu/tonemap.h"
 #include "support/render_support.h"
 
 namespace tallow {
@@ -103,12 +106,13 @@ struct ShadowPlate {
 TEST(RenderGL, ShadowMapDarkensExactlyTheAnalyticShadow) {
   const auto result = test::renderPreset(test::testScene("shadow_plate"), {"render.pcf_radius=1", "render.shadow_bias=1.5"});
   const ShadowPlate plate;
-  // Width of the uncertain border, from the shadow map's resolution: the scene's bounding sphere
-  // (radius 3.42 m incl. 1 % margin) over 2048 texels gives 3.34 mm texels. PCF radius 1 plus the
+  // Width of the uncertain border, from the shadow map's resolution: the map is fitted to the
+  // casters (planes excluded), i.e. the plate's bounding sphere, radius √(1 + 0.02² + 1)/2 m plus
+  // 1 % margin = 0.714 m, over 2048 texels: 0.70 mm texels. PCF radius 1 plus the
   // bilinear comparison blur ±D = 2 texels across the light, which a ground seen at elevation
   // asin(l.y) stretches by 1/l.y = √5; the normal offset of D + 1.5 = 3.5 texels (lights.glsl)
   // lifts the lookup point, which moves the boundary by 3.5·(l.x/l.y) = 7 texels along x.
-  const float texel = 2.0f * 3.42f / 2048.0f;
+  const float texel = 2.0f * 0.714f / 2048.0f;
   const float margin = (2.0f * std::sqrt(5.0f) + 7.0f) * texel;
   int inside = 0, outside = 0;
   for (int y = 0; y < plate.size; ++y)
@@ -137,6 +141,47 @@ TEST(RenderGL, WithShadowsOffTheSameGroundIsLitEverywhere) {
   const ShadowPlate plate;
   for (int y = 0; y < plate.size; ++y)
     for (int x = 0; x < plate.size; ++x) ASSERT_NEAR(result.image.at(x, y).r, plate.litRadiance, kOneLevel);
+}
+
+}  // namespace
+}  // namespace tallow
+
+namespace tallow {
+namespace {
+
+// The window's tone mapping (shaders/display.frag) and the PNG writer's (gpu/tonemap.cpp) compile
+// the same shaders/common/tonemap.glsl; on the same radiance they must agree to the 8-bit level.
+TEST(RenderGL, DisplayPassMatchesTheCppToneMapOfThePngWriter) {
+  for (const char* op : {"clamp", "reinhard", "aces"}) {
+    app::SceneOptions options;
+    options.preset = "bunny";
+    options.sets = {"render.width=160", "render.height=90", std::string("render.tonemap=") + op,
+                    "render.exposure_ev=1.5"};
+    const app::LoadedScene loaded = app::loadScene(options);
+    gpu::ContextOptions contextOptions;
+    auto context = gpu::GlContext::create(contextOptions);
+    sss::Renderer renderer(gpu::ShaderLibrary(), loaded.config.scene, loaded.config.render);
+    renderer.render(loaded.config.scene, loaded.config.render, 0.0);
+    const gpu::Image radiance = renderer.readRadiance();
+
+    gpu::Texture display = gpu::Texture::create2D(GL_RGBA8, 160, 90);
+    gpu::Framebuffer fb;
+    fb.attachColor(0, display);
+    fb.setDrawBuffers(1);
+    fb.checkComplete("test display target");
+    renderer.display(fb.id(), 160, 90, loaded.config.render.toneMap);
+    const gpu::Image shown = gpu::readColor(fb, 0, 160, 90);
+
+    int worst = 0;
+    for (int y = 0; y < 90; ++y)
+      for (int x = 0; x < 160; ++x) {
+        const glm::vec3 cpu = gpu::toneMapToSrgb(glm::vec3(radiance.at(x, y)), loaded.config.render.toneMap);
+        for (int c = 0; c < 3; ++c)
+          worst = std::max(worst, std::abs(static_cast<int>(std::lround(cpu[c] * 255.0f)) -
+                                           static_cast<int>(std::lround(shown.at(x, y)[c] * 255.0f))));
+      }
+    EXPECT_LE(worst, 1) << op;  // float rounding may differ by one level between GPU and CPU
+  }
 }
 
 }  // namespace

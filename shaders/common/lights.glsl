@@ -35,6 +35,7 @@ float directionalVisibility(int i, vec3 p, vec3 n) {
   // Normal offset against self-shadowing (acne), see normalOffsetTexels().
   vec3 q = p + n * (normalOffsetTexels() * uDirShadowTexel[i]);
   vec4 s = uDirShadowMatrix[i] * vec4(q, 1.0);
+  s.z = min(s.z, 1.0);  // beyond the far plane: compare against the cleared depth (lit)
   vec2 texel = 1.0 / vec2(textureSize(uDirShadow, 0).xy);
   float sum = 0.0;
   float count = 0.0;

@@ -1,0 +1,233 @@
+// The command-line contract, exercised through the real executable: outputs of `tallow capture`,
+// agreement of the OSMesa and EGL backends, and one clear line + non-zero exit + no files for each
+// kind of bad input.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+
+#include "app/params.h"
+#include "gpu/image_io.h"
+#include "support/run_tallow.h"
+#include "support/temp_dir.h"
+
+namespace tallow {
+namespace {
+
+using test::runTallow;
+
+int fileCount(const std::filesystem::path& dir) {
+  if (!std::filesystem::exists(dir)) return 0;
+  int n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::recursive_directory_iterator(dir)) ++n;
+  return n;
+}
+
+/// The failure contract: non-zero exit, exactly one line on stderr starting "tallow: " and
+/// containing `expected`, and nothing written under `out`.
+void expectCleanFailure(const test::CommandResult& r, const std::string& expected, const std::filesystem::path& out) {
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("tallow: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(expected), std::string::npos) << "stderr: " << r.err << "expected: " << expected;
+  EXPECT_EQ(fileCount(out), 0) << "files were written under " << out;
+}
+
+TEST(Cli, CaptureOfTheDefaultPresetWritesPngExrAndStats) {
+  test::TempDir dir;
+  const auto out = dir.path() / "capture";
+  const auto r = runTallow({"capture", "--out", out.string(), "--size", "320x180"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_TRUE(std::filesystem::exists(out / "frame_0000.png"));
+  ASSERT_TRUE(std::filesystem::exists(out / "frame_0000.exr"));
+  ASSERT_TRUE(std::filesystem::exists(out / "stats.json"));
+  EXPECT_EQ(fileCount(out), 3);  // no temporary files left behind
+
+  const gpu::Image exr = gpu::readExr(out / "frame_0000.exr");
+  ASSERT_EQ(exr.width, 320);
+  ASSERT_EQ(exr.height, 180);
+  float maxValue = 0.0f;
+  for (const auto& p : exr.pixels)
+    for (int c = 0; c < 4; ++c) {
+      ASSERT_TRUE(std::isfinite(p[c]));
+      maxValue = std::max(maxValue, p[c]);
+    }
+  EXPECT_GT(maxValue, 0.0f);
+
+  std::ifstream in(out / "stats.json");
+  const auto stats = nlohmann::json::parse(in);
+  EXPECT_FALSE(stats["gl"]["GL_RENDERER"].get<std::string>().empty());
+  EXPECT_FALSE(stats["gl"]["GL_VERSION"].get<std::string>().empty());
+  EXPECT_EQ(stats["resolution"], nlohmann::json({320, 180}));
+  EXPECT_EQ(stats["triangles"].get<long>(), 69451 + 2);  // the bunny and the ground's two triangles
+  ASSERT_EQ(stats["frames"].size(), 1u);
+  EXPECT_GT(stats["frames"][0]["wall_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("surface"));
+  EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("shadow.directional"));
+  EXPECT_FALSE(stats["frames"][0]["gpu_ms"].contains("shadow.point")) << "no point light: no cube shadow pass";
+  // Every registry parameter is recorded, with the values in force.
+  const auto materials = sss::MaterialTable::load(std::filesystem::path(TALLOW_TEST_DATA_DIR) / "materials.csv");
+  const app::Registry registry = app::parameterRegistry(materials);
+  for (const auto& p : registry.params())
+    EXPECT_TRUE(stats["parameters"].contains(p.key)) << p.key;
+  EXPECT_EQ(stats["parameters"]["render.width"], 320);
+  EXPECT_EQ(stats["parameters"]["material"], "Marble");
+}
+
+TEST(Cli, OsMesaAndEglAgreeWithinOneLevel) {
+  test::TempDir dir;
+  const auto a = runTallow({"capture", "--gl", "osmesa", "--size", "320x180", "--out", (dir.path() / "a").string()});
+  const auto b = runTallow({"capture", "--gl", "egl", "--size", "320x180", "--out", (dir.path() / "b").string()});
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  const gpu::Image pa = gpu::readPng(dir.path() / "a" / "frame_0000.png");
+  const gpu::Image pb = gpu::readPng(dir.path() / "b" / "frame_0000.png");
+  ASSERT_EQ(pa.pixels.size(), pb.pixels.size());
+  float worst = 0.0f;
+  for (std::size_t i = 0; i < pa.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(pa.pixels[i][c] - pb.pixels[i][c]));
+  EXPECT_LE(worst, 1.0f / 255.0f + 1e-6f);
+}
+
+TEST(Cli, MalformedPresetNamesFileLineAndColumn) {
+  test::TempDir dir;
+  const auto preset = dir.write("bad.json", "{\n  \"name\": \"x\",\n  \"camera\": {\"type\": \"orthographic\",,}\n}\n");
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--preset", preset.string(), "--out", out.string()}),
+                     preset.string() + ":3:", out);
+}
+
+TEST(Cli, UnknownPresetKeyNamesFileLineAndColumn) {
+  test::TempDir dir;
+  std::ifstream in(std::string(TALLOW_TEST_SOURCE_DIR) + "/presets/bunny.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Misspell the first "ambient" key: the error must point at it.
+  const auto pos = text.find("\"ambient\"");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 9, "\"ambeint\"");
+  int line = 1, col = 1;
+  for (std::size_t i = 0; i < pos; ++i) {
+    if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+  }
+  const auto preset = dir.write("typo.json", text);
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--preset", preset.string(), "--out", out.string()}),
+                     preset.string() + ":" + std::to_string(line) + ":" + std::to_string(col) + ": unknown key \"ambeint\"",
+                     out);
+}
+
+TEST(Cli, BadSetValuesAreRefused) {
+  test::TempDir dir;
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--set", "render.shadow_map_size=-4", "--out", out.string()}),
+                     "render.shadow_map_size", out);
+  expectCleanFailure(runTallow({"capture", "--set", "render.shadw_bias=1", "--out", out.string()}),
+                     "render.shadow_bias", out);  // the did-you-mean suggestion
+  expectCleanFailure(runTallow({"capture", "--set", "material=Marbel", "--out", out.string()}), "Marble", out);
+}
+
+TEST(Cli, MissingMeshFileIsNamed) {
+  test::TempDir dir;
+  const auto preset = dir.write("nomesh.json", R"({
+  "name": "nomesh",
+  "camera": {"type": "perspective", "position": [0, 0, 1], "target": [0, 0, 0]},
+  "lights": [],
+  "objects": [{"name": "ghost", "mesh": "does_not_exist.ply"}]
+})");
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--preset", preset.string(), "--out", out.string()}), "does_not_exist.ply",
+                     out);
+}
+
+TEST(Cli, BrokenMeshFileIsNamed) {
+  test::TempDir dir;
+  dir.write("broken.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1\n3 0 1 2\n");
+  const auto preset = dir.write("broken.json", R"({
+  "name": "broken",
+  "camera": {"type": "perspective", "position": [0, 0, 1], "target": [0, 0, 0]},
+  "lights": [],
+  "objects": [{"name": "b", "mesh": "broken.ply"}]
+})");
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--preset", preset.string(), "--out", out.string()}), "broken.ply:", out);
+}
+
+TEST(Cli, UnwritableOutputFolderIsRefusedBeforeRendering) {
+  test::TempDir dir;
+  const auto file = dir.write("a_file", "x");
+  const auto out = file / "sub";  // a folder below a regular file can never be created
+  expectCleanFailure(runTallow({"capture", "--out", out.string()}), "is not a folder", out);
+}
+
+TEST(Cli, ContextBelowGl45IsOneClearError) {
+  // Mesa caps the version it offers when MESA_GL_VERSION_OVERRIDE is set, as an old driver would.
+  test::TempDir dir;
+  const auto out = dir.path() / "out";
+  for (const char* backend : {"osmesa", "egl"}) {
+    expectCleanFailure(runTallow({"capture", "--gl", backend, "--out", out.string()}, {"MESA_GL_VERSION_OVERRIDE=3.3"}),
+                       "OpenGL 4.5 core is required, but " + std::string(backend), out);
+  }
+}
+
+TEST(Cli, ShaderCompileErrorNamesFileAndLine) {
+  test::TempDir dir;
+  const auto shaders = dir.path() / "shaders";
+  std::filesystem::copy(std::string(TALLOW_TEST_SOURCE_DIR) + "/shaders", shaders,
+                        std::filesystem::copy_options::recursive);
+  {
+    std::ofstream f(shaders / "surface.frag", std::ios::app);
+    f << "\nthis is not glsl;\n";
+  }
+  std::ifstream in(shaders / "surface.frag");
+  int lines = 0;
+  for (std::string l; std::getline(in, l);) ++lines;
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--shader-dir", shaders.string(), "--out", out.string()}),
+                     "shaders/surface.frag:" + std::to_string(lines) + ": ", out);
+}
+
+TEST(Cli, ExplainPrintsThePlan) {
+  test::TempDir dir;
+  const auto r = runTallow({"capture", "--explain", "--size", "64x64", "--set", "render.shadows=false", "--out",
+                            (dir.path() / "o").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("pass surface"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("shadow."), std::string::npos) << "shadows are off, yet a shadow pass is planned:\n" << r.out;
+}
+
+}  // namespace
+}  // namespace tallow
+
+namespace tallow {
+namespace {
+
+TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  test::TempDir dir;
+  const std::string command = "cd " + dir.path().string() + " && xvfb-run -a -s '-screen 0 800x600x24' " +
+                              std::string(TALLOW_TEST_BINARY) + " view --frames 3 --size 320x180 2>err.txt";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream err(dir.path() / "err.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("no display"), std::string::npos) << "fell back to capture: " << text;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out")) << "a window run must not capture";
+}
+
+TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
+  test::TempDir dir;
+  const std::string command = "cd " + dir.path().string() + " && env -u DISPLAY -u WAYLAND_DISPLAY " +
+                              std::string(TALLOW_TEST_BINARY) + " view --size 64x36 2>err.txt >/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream err(dir.path() / "err.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("no display; capturing bunny into out/"), std::string::npos) << text;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / "frame_0000.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / "stats.json"));
+}
+
+}  // namespace
+}  // namespace tallow
