@@ -136,6 +136,40 @@ TEST(RenderGL, ShadowMapDarkensExactlyTheAnalyticShadow) {
   EXPECT_GT(outside, 9000);
 }
 
+// tests/data/point_shadow.json: point light of intensity π at (0, 2, 0), albedo 1, so lit ground
+// at (x, 0, z) has L = (1/π)·π·cosθ/d² = 2/d³ with d² = x² + z² + 4. The plate (half-size 0.25,
+// top at y = 1.01) throws the central projection |x|,|z| ≤ 0.25·2/(2 − 1.01) = 0.50505; seen from
+// above the plate itself hides |x|,|z| < 0.25, so the shadow shows as a ring.
+TEST(RenderGL, PointLightCubeShadowMatchesTheCentralProjection) {
+  const auto result = test::renderPreset(test::testScene("point_shadow"));
+  const float half = 0.25f * 2.0f / (2.0f - 1.01f);
+  // Cube faces of 1024² texels (half of render.shadow_map_size) span 90°: 1.5 mrad, i.e. 3.2 mm at
+  // the 2.06 m distance of the shadow's edge. PCF ±2 texels, plus the 3.5-texel normal offset
+  // (11 mm upward) shifting the edge by 11 mm · 0.25 outward: 2 cm covers all of it.
+  const float margin = 0.02f;
+  int ring = 0, lit = 0;
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 128; ++x) {
+      const float wx = (x + 0.5f) / 128.0f * 2.0f - 1.0f;
+      const float wz = (y + 0.5f) / 128.0f * 2.0f - 1.0f;
+      const float m = std::max(std::abs(wx), std::abs(wz));
+      const glm::vec4 p = result.image.at(x, y);
+      if (m > 0.25f + margin && m < half - margin) {
+        ++ring;
+        ASSERT_LE(p.r, kOneLevel) << "pixel (" << x << ", " << y << ") should be in the plate's shadow";
+      } else if (m > half + margin) {
+        ++lit;
+        const float d = std::sqrt(wx * wx + wz * wz + 4.0f);
+        ASSERT_NEAR(p.r, 2.0f / (d * d * d), kOneLevel) << "pixel (" << x << ", " << y << ")";
+      }
+    }
+  EXPECT_GT(ring, 2500);  // ((0.505 − 0.02)² − (0.25 + 0.02)²)·4 m² of 4 m² × 128²: ~2,660 px
+  EXPECT_GT(lit, 11000);
+  bool ranPointPass = false;
+  for (const auto& pass : result.timings.passes) ranPointPass |= pass.name == "shadow.point";
+  EXPECT_TRUE(ranPointPass);
+}
+
 TEST(RenderGL, WithShadowsOffTheSameGroundIsLitEverywhere) {
   const auto result = test::renderPreset(test::testScene("shadow_plate"), {"render.shadows=false"});
   const ShadowPlate plate;
