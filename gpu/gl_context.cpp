@@ -8,6 +8,10 @@
 
 #include "gpu/gl_context_backends.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <dlfcn.h>
+#endif
+
 namespace tallow::gpu {
 
 GlBackend parseGlBackend(std::string_view name) {
@@ -26,7 +30,21 @@ std::string_view glBackendName(GlBackend backend) {
   return "?";
 }
 
+namespace {
+/// Under AddressSanitizer only: glvnd unloads the vendor driver when the display is terminated,
+/// after which LeakSanitizer can neither name nor suppress the allocations the driver never
+/// freed (tests/lsan.supp). Pinning the drivers keeps their symbols for the report.
+void pinDriversForLeakReports() {
+#if defined(__SANITIZE_ADDRESS__)
+  for (const char* lib : {"libEGL_mesa.so.0", "libGLX_mesa.so.0", "libEGL_nvidia.so.0", "libGLX_nvidia.so.0",
+                          "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so"})
+    dlopen(lib, RTLD_NOW | RTLD_NODELETE);
+#endif
+}
+}  // namespace
+
 std::unique_ptr<GlContext> GlContext::create(const ContextOptions& options) {
+  pinDriversForLeakReports();
   switch (options.backend) {
     case GlBackend::Glfw: return detail::createGlfwContext(options);
     case GlBackend::OsMesa: return detail::createOsMesaContext(options);

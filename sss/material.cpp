@@ -98,7 +98,10 @@ MaterialTable MaterialTable::parse(std::string_view text, const std::string& nam
 
     if (!sawHeader) {
       std::string expected;
-      for (std::string_view c : kColumns) expected += (expected.empty() ? "" : ",") + std::string(c);
+      for (std::string_view c : kColumns) {
+        if (!expected.empty()) expected += ',';
+        expected += c;
+      }
       if (line != expected) fail("expected the header \"" + expected + "\"");
       sawHeader = true;
       continue;
@@ -113,6 +116,10 @@ MaterialTable MaterialTable::parse(std::string_view text, const std::string& nam
     m.name = std::string(fields[0]);
     m.source = std::string(fields[1]);
     if (m.name.empty()) fail("name: empty");
+    for (const std::string* text : {&m.name, &m.source})
+      for (const char c : *text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+          fail(std::string(text == &m.name ? "name" : "source") + ": contains a control character");
     if (m.name.front() == ' ' || m.name.back() == ' ') fail("name: leading or trailing space in \"" + m.name + "\"");
 
     float numbers[10];

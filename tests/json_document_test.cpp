@@ -77,6 +77,14 @@ TEST(JsonDocument, LocatesKeys) {
   EXPECT_EQ(keyAt(doc, ""), "t.json:1:1");
 }
 
+TEST(JsonDocument, KeysInDocumentOrder) {
+  const JsonDocument doc = JsonDocument::parse("{\"z\": 1, \"a\": {\"y\": 2, \"b\": 3}, \"m\": [4]}", "k.json");
+  EXPECT_EQ(doc.keysInOrder(Ptr("")), (std::vector<std::string>{"z", "a", "m"}));
+  EXPECT_EQ(doc.keysInOrder(Ptr("/a")), (std::vector<std::string>{"y", "b"}));
+  EXPECT_TRUE(doc.keysInOrder(Ptr("/m")).empty());
+  EXPECT_TRUE(doc.keysInOrder(Ptr("/nothing")).empty());
+}
+
 TEST(JsonDocument, MissingPointersFallBackToTheNearestAncestor) {
   const JsonDocument doc = JsonDocument::parse(kText, "t.json");
   EXPECT_EQ(at(doc, "/objects/0/albedo"), "t.json:4:5");
@@ -142,6 +150,9 @@ TEST(JsonDocument, RejectsNumberOverflow) {
 TEST(JsonDocument, RejectsDuplicateKeysAtTheSecondOccurrence) {
   EXPECT_EQ(errorOf([] { JsonDocument::parse("{\"a\": 1,\n \"b\": {\"c\": 1, \"c\": 2}}", "d.json"); }),
             "d.json:2:16: duplicate key \"c\"");
+  // Escaped control characters in a key stay escaped in the one-line message.
+  EXPECT_EQ(errorOf([] { JsonDocument::parse("{\"a\\nb\": 1, \"a\\nb\": 2}", "d.json"); }),
+            "d.json:1:13: duplicate key \"a\\u000ab\"");
   // The same key in different objects is fine.
   EXPECT_NO_THROW(JsonDocument::parse("[{\"c\": 1}, {\"c\": 2}]", "d.json"));
 }
@@ -168,6 +179,8 @@ TEST(JsonDocument, LoadsFilesAndNamesThemAsGiven) {
   EXPECT_EQ(e.rfind(file.string() + ":2:14: ", 0), 0u) << e;
   std::filesystem::remove(file);
   EXPECT_EQ(errorOf([&] { JsonDocument::load(file); }), file.string() + ": cannot open");
+  const std::filesystem::path folder = std::filesystem::temp_directory_path();
+  EXPECT_EQ(errorOf([&] { JsonDocument::load(folder); }), folder.string() + ": is a folder, not a file");
 }
 
 }  // namespace

@@ -83,8 +83,11 @@ TEST(MaterialTable, AcceptsPurelyAbsorbingBands) {
 }
 
 TEST(MaterialTable, AcceptsCrLfAndBlankLines) {
-  std::string crlf = kHeader + kMarble + "\n";
-  for (std::size_t i = 0; (i = crlf.find('\n', i)) != std::string::npos; i += 2) crlf.insert(i, "\r");
+  std::string crlf;
+  for (const char c : kHeader + kMarble + "\n") {
+    if (c == '\n') crlf += '\r';
+    crlf += c;
+  }
   EXPECT_EQ(MaterialTable::parse(crlf, "m.csv").materials().size(), 1u);
 }
 
@@ -118,6 +121,8 @@ TEST(MaterialTable, ErrorsNameFileLineAndColumn) {
             "m.csv:2: unit: \"m^-1\" (expected \"mm^-1\")");
   EXPECT_EQ(errorOf(kHeader + ",J,2.19,2.62,3,0.0021,0.0041,0.0071,0,0,0,1.5,mm^-1\n"), "m.csv:2: name: empty");
   EXPECT_EQ(errorOf(kHeader + kMarble + "\n" + kMarble), "m.csv:4: duplicate material \"Marble\" (first on line 2)");
+  EXPECT_EQ(errorOf(kHeader + "Mar\rble,J,2.19,2.62,3,0.0021,0.0041,0.0071,0,0,0,1.5,mm^-1\n"),
+            "m.csv:2: name: contains a control character");
 }
 
 TEST(MaterialTable, LoadReportsMissingFile) {

@@ -339,6 +339,15 @@ TEST(InputErrorHints, EditDistanceAndSuggestions) {
   EXPECT_EQ(didYouMean("marble", {"Apple", "Marble"}), " (did you mean \"Marble\"?)");
   EXPECT_EQ(didYouMean("xyz", {"Apple", "Marble"}), "");
   EXPECT_EQ(didYouMean("", {"a"}), "");
+  EXPECT_EQ(didYouMean("fov", {"fov_deg", "height"}), " (did you mean \"fov_deg\"?)");  // abbreviation
+}
+
+TEST(InputErrorHints, QuoteKeepsMessagesOnOneLine) {
+  EXPECT_EQ(quote("plain"), "\"plain\"");
+  EXPECT_EQ(quote("a\"b\\c\nd\te"), "\"a\\\"b\\\\c\\u000ad\\u0009e\"");
+  EXPECT_EQ(quote(std::string(100, 'x')), "\"" + std::string(60, 'x') + "...\"");
+  // Cut before a multi-byte character rather than through it.
+  EXPECT_EQ(quote(std::string(59, 'x') + "\xCF\x83" + "tail"), "\"" + std::string(59, 'x') + "...\"");
 }
 
 }  // namespace

@@ -1,0 +1,205 @@
+#include "app/params.h"
+
+#include <glm/geometric.hpp>
+
+#include <memory>
+#include <type_traits>
+
+#include "app/input_error.h"
+
+namespace tallow::app {
+
+namespace {
+
+using json = nlohmann::json;
+using Param = Registry::Param;
+
+// Bounds of scene coordinates (metres) and light magnitudes; generous, but finite so that every
+// value fits a float and the panel can draw a slider.
+constexpr double kMaxCoordinate = 1e4;
+constexpr double kMaxRadiometric = 1e9;
+
+glm::vec3 toVec3(const json& v) { return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()}; }
+json toJson(const glm::vec3& v) { return json::array({floatToJson(v.x), floatToJson(v.y), floatToJson(v.z)}); }
+
+sss::SceneObject& firstObject(Config& c) {
+  if (c.scene.objects.empty()) throw InputError("the scene has no objects");
+  return c.scene.objects.front();
+}
+
+sss::Light& firstLight(Config& c) {
+  if (c.scene.lights.empty()) throw InputError("the scene has no lights");
+  return c.scene.lights.front();
+}
+
+Param declare(std::string key, std::string type, std::string units, std::string help, double min = 0,
+              double max = 0) {
+  Param p;
+  p.key = std::move(key);
+  p.type = std::move(type);
+  p.units = std::move(units);
+  p.help = std::move(help);
+  p.min = min;
+  p.max = max;
+  return p;
+}
+
+/// Binds a parameter to one plain field. `field` is a generic lambda `(auto& config) -> auto&`
+/// returning the field, so it serves the getter (const Config) and the setter alike.
+template <typename T, typename Field>
+Param bind(Param p, Field field) {
+  p.getter = [field](const Config& c) {
+    if constexpr (std::is_same_v<T, float>) return floatToJson(field(c));
+    else return json(field(c));
+  };
+  p.setter = [field](Config& c, const json& v) { field(c) = v.get<T>(); };
+  return p;
+}
+
+Param withDefault(Param p, json value) {
+  p.defaultValue = std::move(value);
+  return p;
+}
+
+}  // namespace
+
+Registry parameterRegistry(const sss::MaterialTable& materials) {
+  Registry r;
+
+  // --- Output and rasterisation ---------------------------------------------------------------
+  r.add(bind<int>(withDefault(declare("render.width", "int", "px", "Width of the rendered image.", 1, 16384), 960),
+                  [](auto& c) -> auto& { return c.render.width; }));
+  r.add(bind<int>(withDefault(declare("render.height", "int", "px", "Height of the rendered image.", 1, 16384), 540),
+                  [](auto& c) -> auto& { return c.render.height; }));
+  r.add(bind<bool>(withDefault(declare("render.shadows", "bool", "", "Shadow maps for the lights that cast shadows."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.shadows; }));
+  r.add(bind<int>(withDefault(declare("render.shadow_map_size", "int", "texels",
+                                      "Edge length of each light's shadow map.", 16, 16384),
+                              2048),
+                  [](auto& c) -> auto& { return c.render.shadowMapSize; }));
+  r.add(bind<float>(withDefault(declare("render.shadow_bias", "float", "shadow-map texels along the surface normal",
+                                        "Offset of the shadow lookup off the surface, against shadow acne.", 0, 16),
+                                1.5),
+                    [](auto& c) -> auto& { return c.render.shadowBias; }));
+  r.add(bind<int>(withDefault(declare("render.pcf_radius", "int", "texels",
+                                      "Percentage-closer filtering radius; 0 reads the shadow map once.", 0, 4),
+                              1),
+                  [](auto& c) -> auto& { return c.render.pcfRadius; }));
+  {
+    Param p = withDefault(declare("render.tonemap", "enum", "", "Tone-mapping operator of PNG and window output."),
+                          "aces");
+    p.choices = {"clamp", "reinhard", "aces"};
+    p.getter = [](const Config& c) { return json(std::string(gpu::toneMapName(c.render.toneMap.op))); };
+    p.setter = [](Config& c, const json& v) { c.render.toneMap.op = gpu::parseToneMap(v.get<std::string>()); };
+    r.add(std::move(p));
+  }
+  r.add(bind<float>(withDefault(declare("render.exposure_ev", "float", "stops",
+                                        "Exposure before tone mapping: radiance is scaled by 2^ev.", -20, 20),
+                                0.0),
+                    [](auto& c) -> auto& { return c.render.toneMap.exposureEv; }));
+
+  // --- Scene-bound: no default; the preset gives the value --------------------------------------
+  {
+    Param p = declare("scale", "float", "m", "Size of the first object (mesh: largest extent of its bounding box).",
+                      1e-5, 1e3);
+    p.getter = [](const Config& c) {
+      return c.scene.objects.empty() ? json(nullptr) : floatToJson(c.scene.objects.front().transform.scale);
+    };
+    p.setter = [](Config& c, const json& v) { firstObject(c).transform.scale = v.get<float>(); };
+    r.add(std::move(p));
+  }
+  {
+    auto table = std::make_shared<const sss::MaterialTable>(materials);
+    Param p = declare("material", "enum", "",
+                      "Measured material of the first object (a row of materials.csv); makes it translucent.");
+    for (const sss::Material& m : table->materials()) p.choices.push_back(m.name);
+    p.getter = [](const Config& c) {
+      if (c.scene.objects.empty() || !c.scene.objects.front().translucent) return json(nullptr);
+      return json(c.scene.objects.front().material.name);
+    };
+    p.setter = [table](Config& c, const json& v) {
+      sss::SceneObject& object = firstObject(c);
+      object.material = table->find(v.get<std::string>()).value();  // a checked choice, so present
+      object.translucent = true;
+    };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("light.intensity", "vec3", "W/m² (directional) or W/sr (point)",
+                      "First light: irradiance of a directional light or intensity of a point light, per band.", 0,
+                      kMaxRadiometric);
+    p.getter = [](const Config& c) {
+      return c.scene.lights.empty() ? json(nullptr) : toJson(c.scene.lights.front().intensity);
+    };
+    p.setter = [](Config& c, const json& v) { firstLight(c).intensity = toVec3(v); };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("light.direction", "vec3", "",
+                      "First light, if directional: unit vector from the scene toward the light (normalised on set).",
+                      -1, 1);
+    p.getter = [](const Config& c) {
+      if (c.scene.lights.empty() || c.scene.lights.front().kind != sss::LightKind::Directional) return json(nullptr);
+      return toJson(c.scene.lights.front().direction);
+    };
+    p.setter = [](Config& c, const json& v) {
+      sss::Light& light = firstLight(c);
+      if (light.kind != sss::LightKind::Directional)
+        throw InputError("the first light is a point light (it has light.position)");
+      // In double: a tiny float vector's squared length would underflow to 0.
+      const glm::dvec3 d(toVec3(v));
+      if (d == glm::dvec3(0.0)) throw InputError("the direction must not be zero");
+      light.direction = glm::vec3(d / glm::length(d));
+    };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("light.position", "vec3", "m", "First light, if a point light: its position.", -kMaxCoordinate,
+                      kMaxCoordinate);
+    p.getter = [](const Config& c) {
+      if (c.scene.lights.empty() || c.scene.lights.front().kind != sss::LightKind::Point) return json(nullptr);
+      return toJson(c.scene.lights.front().position);
+    };
+    p.setter = [](Config& c, const json& v) {
+      sss::Light& light = firstLight(c);
+      if (light.kind != sss::LightKind::Point)
+        throw InputError("the first light is directional (it has light.direction)");
+      light.position = toVec3(v);
+    };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("camera.position", "vec3", "m", "Camera position.", -kMaxCoordinate, kMaxCoordinate);
+    p.getter = [](const Config& c) { return toJson(c.scene.camera.position); };
+    p.setter = [](Config& c, const json& v) { c.scene.camera.position = toVec3(v); };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("camera.target", "vec3", "m", "Point the camera looks at.", -kMaxCoordinate, kMaxCoordinate);
+    p.getter = [](const Config& c) { return toJson(c.scene.camera.target); };
+    p.setter = [](Config& c, const json& v) { c.scene.camera.target = toVec3(v); };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("camera.fov_deg", "float", "deg", "Vertical field of view of a perspective camera.", 1, 179);
+    p.getter = [](const Config& c) {
+      return c.scene.camera.orthographic ? json(nullptr) : floatToJson(c.scene.camera.fovYDeg);
+    };
+    p.setter = [](Config& c, const json& v) {
+      if (c.scene.camera.orthographic) throw InputError("the camera is orthographic (it has a height, not a field of view)");
+      c.scene.camera.fovYDeg = v.get<float>();
+    };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("ambient", "vec3", "W/(m²·sr)", "Uniform sky radiance lighting opaque surfaces, per band.", 0,
+                      kMaxRadiometric);
+    p.getter = [](const Config& c) { return toJson(c.scene.ambient); };
+    p.setter = [](Config& c, const json& v) { c.scene.ambient = toVec3(v); };
+    r.add(std::move(p));
+  }
+  return r;
+}
+
+}  // namespace tallow::app
