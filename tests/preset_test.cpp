@@ -104,7 +104,7 @@ TEST(Preset, BunnyLoads) {
   EXPECT_GT(s.lights[0].direction.y, 0.0f);  // above
   EXPECT_GT(s.lights[0].direction.z, 0.0f);  // and the front (the camera's side)
   EXPECT_TRUE(s.lights[0].castsShadows);
-  EXPECT_EQ(s.lights[0].intensity, glm::vec3(3.0f));
+  EXPECT_EQ(s.lights[0].intensity, glm::vec3(2.4f));
   EXPECT_FALSE(s.camera.orthographic);
   EXPECT_GT(s.camera.position.z, 0.0f);
   // The bunny (0.1 m tall) fills about half the frame height at the target distance.
