@@ -352,6 +352,7 @@ struct ExrBuilder {
       : channels(std::move(channelNames)), minX(x0), minY(y0), width(w), height(h) {}
   std::vector<std::string> channels;  ///< sorted, as the format requires
   int minX, minY, width, height;
+  std::vector<std::uint8_t> extraAttributes;  ///< raw bytes placed at the end of the header
 
   std::vector<std::uint8_t> bytes;
   void u8(std::uint8_t v) { bytes.push_back(v); }
@@ -407,6 +408,7 @@ struct ExrBuilder {
     f32(0.0f);
     attribute("screenWindowWidth", "float", 4);
     f32(1.0f);
+    bytes.insert(bytes.end(), extraAttributes.begin(), extraAttributes.end());
     u8(0);
   }
 
@@ -499,6 +501,23 @@ TEST(ExrIo, AbsurdHeadersFailBeforeAllocating) {
   ExrBuilder empty{{"R"}, 5, 5, 0, 1};
   empty.header();
   expectOneLineError([&] { readExrFromMemory(empty.bytes, "empty.exr"); }, "empty.exr: empty data window");
+  // Attribute sizes that disagree with their types (found by fuzzing: OpenEXR 3.1 reads a v2f's
+  // 8 bytes whatever the stored size says, then misreads the rest of the header).
+  const auto withAttribute = [](const std::string& type, const std::vector<std::uint8_t>& value) {
+    ExrBuilder builder{{"R"}, 0, 0, 1, 1};
+    ExrBuilder raw{{}, 0, 0, 1, 1};
+    raw.attribute("extra", type, static_cast<std::int32_t>(value.size()));
+    raw.bytes.insert(raw.bytes.end(), value.begin(), value.end());
+    builder.extraAttributes = raw.bytes;
+    return builder.build([](std::size_t, int, int) { return 0.5f; });
+  };
+  EXPECT_NO_THROW(readExrFromMemory(withAttribute("v2f", std::vector<std::uint8_t>(8)), "ok.exr"));
+  expectOneLineError([&] { readExrFromMemory(withAttribute("v2f", {}), "v2f.exr"); }, "v2f.exr: attribute extra is malformed");
+  // A preview claiming 65536 × 65536 pixels in 8 bytes; a string vector with a 2 GB string.
+  expectOneLineError([&] { readExrFromMemory(withAttribute("preview", {0, 0, 1, 0, 0, 0, 1, 0}), "p.exr"); },
+                     "p.exr: attribute extra is malformed");
+  expectOneLineError([&] { readExrFromMemory(withAttribute("stringvector", {0, 0, 0, 0x7f, 'a'}), "s.exr"); },
+                     "s.exr: attribute extra is malformed");
 }
 
 TEST(ExrIo, CorruptAndTruncatedFilesThrow) {
