@@ -2,6 +2,8 @@
 #include "gpu/image_io.h"
 
 #include <gtest/gtest.h>
+
+#include "support/temp_dir.h"
 #include <png.h>
 #include <unistd.h>
 
@@ -23,32 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A fresh folder under the system temp dir, removed with everything in it at the end.
-class TempDir {
-public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("tallow_image_io_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ignored);
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
-private:
-  fs::path path_;
-};
+using test::TempDir;
 
 std::vector<std::uint8_t> readBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

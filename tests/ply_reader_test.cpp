@@ -3,6 +3,8 @@
 #include "geometry/ply_reader.h"
 
 #include <gtest/gtest.h>
+
+#include "support/temp_dir.h"
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,25 +25,7 @@ namespace fs = std::filesystem;
 
 const fs::path kDataDir = TALLOW_TEST_DATA_DIR;
 
-/// A fresh folder under the system temp dir, removed with everything in it at the end.
-class TempDir {
-public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("tallow_ply_reader_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
-private:
-  fs::path path_;
-};
+using test::TempDir;
 
 // ---------------------------------------------------------------------------------------------
 // A small PLY writer for the tests: one description, any of the three encodings.

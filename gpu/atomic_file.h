@@ -1,0 +1,21 @@
+#pragma once
+// Writing output files so that a reader never sees a partial one: write a temporary file beside
+// the target, then rename it over the target (rename is atomic within one file system, POSIX).
+#include <filesystem>
+#include <functional>
+#include <string_view>
+
+namespace tallow::gpu {
+
+/// Calls `writer` with a fresh, unique temporary path in the folder of `path`
+/// (`.NAME.tmp-<pid>-<counter>`, already created empty), then renames it onto `path`.
+/// If `writer` throws, the temporary file is removed and the exception propagates unchanged.
+/// If the folder is missing or not writable, or the rename fails, throws std::runtime_error
+/// with one line: `cannot write PATH: REASON`.
+void writeFileAtomically(const std::filesystem::path& path,
+                         const std::function<void(const std::filesystem::path& tmp)>& writer);
+
+/// writeFileAtomically with a writer that stores `text` byte for byte.
+void writeTextFileAtomically(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace tallow::gpu

@@ -1,0 +1,47 @@
+#pragma once
+// Reading and writing images: 8-bit sRGB PNG (libpng) and linear half/float EXR (OpenEXR).
+// Every function throws std::runtime_error with one line, `NAME: WHAT`, on any failure; writes are
+// atomic (a reader sees the old file or the complete new one, never a partial file).
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <span>
+#include <string>
+
+#include "gpu/image.h"
+#include "gpu/tonemap.h"
+
+namespace tallow::gpu {
+
+/// Largest image any reader accepts, in pixels (2^28: 4 GiB as RGBA float). Checked before
+/// anything is allocated, so that a corrupt header cannot exhaust memory.
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
+
+/// Tone maps each pixel with toneMapToSrgb and stores 8-bit RGB, round(v × 255). Alpha is dropped.
+void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap);
+
+/// Reads any PNG (grey, grey+alpha, palette, RGB, RGBA; 1–16 bits) into RGBA. Values are returned
+/// as stored — byte / 255, or word / 65535 for 16-bit files — i.e. still sRGB-encoded, NOT
+/// linearised; no gamma chunk is applied. A missing alpha channel reads as 1.
+Image readPng(const std::filesystem::path& path);
+/// readPng on bytes in memory; `nameForErrors` starts every error message.
+Image readPngFromMemory(std::span<const std::uint8_t> data, const std::string& nameForErrors);
+
+enum class ExrPixelType { Half, Float };
+
+/// Writes linear RGBA (channels R, G, B, A; ZIP compression) with the given sample type.
+/// `attributes` become string attributes in the header (e.g. "tallow.spp" → "1024"); a name that
+/// clashes with a standard attribute of another type is an error.
+void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
+              const std::map<std::string, std::string>& attributes = {});
+
+/// Reads R, G, B and A (1 where absent) of a single-part flat EXR, any sample type, as float.
+/// The result covers the data window. A file with only a Y channel reads as grey.
+Image readExr(const std::filesystem::path& path);
+/// readExr on bytes in memory; `nameForErrors` starts every error message.
+Image readExrFromMemory(std::span<const std::uint8_t> data, const std::string& nameForErrors);
+
+/// Every string attribute in the header of an EXR file (name → value).
+std::map<std::string, std::string> readExrStringAttributes(const std::filesystem::path& path);
+
+}  // namespace tallow::gpu
