@@ -25,11 +25,20 @@ std::string slurp(const std::filesystem::path& p) {
 
 CommandResult runTallow(const std::vector<std::string>& args, const std::vector<std::string>& env) {
   TempDir io;
+  // Appended piece by piece: `" " + std::string&&` trips GCC 12's false -Wrestrict (bug 105651).
   std::string command = "env";
-  for (const auto& e : env) command += " " + quote(e);
-  command += " " + quote(TALLOW_TEST_BINARY);
-  for (const auto& a : args) command += " " + quote(a);
-  command += " >" + quote((io.path() / "out").string()) + " 2>" + quote((io.path() / "err").string()) + " </dev/null";
+  auto word = [&command](const std::string& w) {
+    command += ' ';
+    command += quote(w);
+  };
+  for (const auto& e : env) word(e);
+  word(TALLOW_TEST_BINARY);
+  for (const auto& a : args) word(a);
+  command += " >";
+  command += quote((io.path() / "out").string());
+  command += " 2>";
+  command += quote((io.path() / "err").string());
+  command += " </dev/null";
   const int status = std::system(command.c_str());
   CommandResult r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
