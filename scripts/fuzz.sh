@@ -10,8 +10,10 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DTALLOW_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build "$build" -j"$jobs"
 status=0
+ran=0
 for target in "$build"/fuzz_*; do
-  [ -x "$target" ] || continue
+  [ -f "$target" ] && [ -x "$target" ] || continue
+  ran=$((ran + 1))
   name="$(basename "$target")"
   corpus_name="${name#fuzz_}"
   work="$build/corpus/$corpus_name"
@@ -28,5 +30,9 @@ for target in "$build"/fuzz_*; do
     grep -E "stat::number_of_executed_units" "$build/$name.log" | sed "s/^/fuzz: $name /" || true
   fi
 done
-[ $status -eq 0 ] && echo "fuzz: all targets clean"
+if [ "$ran" -eq 0 ]; then
+  echo "fuzz: no fuzz targets found in $build"
+  exit 1
+fi
+[ $status -eq 0 ] && echo "fuzz: all $ran targets clean"
 exit $status
