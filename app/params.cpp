@@ -79,7 +79,8 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                               2048),
                   [](auto& c) -> auto& { return c.render.shadowMapSize; }));
   r.add(bind<float>(withDefault(declare("render.shadow_bias", "float", "shadow-map texels along the surface normal",
-                                        "Offset of the shadow lookup off the surface, against shadow acne.", 0, 16),
+                                        "Extra offset of the shadow lookup along the normal, on top of the PCF footprint "
+                                        "(pcf_radius + 1 texels, which alone rules out acne on flat surfaces).", 0, 16),
                                 1.5),
                     [](auto& c) -> auto& { return c.render.shadowBias; }));
   r.add(bind<int>(withDefault(declare("render.pcf_radius", "int", "texels",

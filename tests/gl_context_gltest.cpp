@@ -69,3 +69,20 @@ TEST(GlContext, AllEmbeddedPassesCompileAndLink) {
 
 }  // namespace
 }  // namespace tallow
+
+namespace tallow {
+namespace {
+
+TEST(GlContext, DebugOutputReachesTheLog) {
+  gpu::ContextOptions options;
+  options.debugOutput = true;  // the default in debug builds
+  auto context = gpu::GlContext::create(options);
+  testing::internal::CaptureStderr();
+  glEnable(0x7FFF);  // not a capability: the driver reports GL_INVALID_ENUM through KHR_debug
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  EXPECT_NE(log.find("gl error"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace tallow
