@@ -5,8 +5,11 @@
 #include <exception>
 
 #include "app/capture_command.h"
+#include "app/cost_command.h"
 #include "app/input_error.h"
 #include "app/params.h"
+#include "app/probe_command.h"
+#include "app/profile_command.h"
 #include "app/view_command.h"
 #include "gpu/gl_context.h"
 #include "gpu/shader_library.h"
@@ -60,6 +63,45 @@ int main(int argc, char** argv) {
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
 
+  auto* probeCmd = app.add_subcommand("probe", "evaluate the BSSRDF models outside a scene");
+  probeCmd->require_subcommand(1);
+  tallow::app::ProbeBssrdfOptions probeBssrdf;
+  auto* probeBssrdfCmd = probeCmd->add_subcommand("bssrdf", "evaluate S_d for each configuration of a CSV file");
+  probeBssrdfCmd->add_option("--model", probeBssrdf.model, "standard | directional | pbd")->required();
+  probeBssrdfCmd->add_option("--precision", probeBssrdf.precision, "float | double (default: double, float with --gpu)");
+  probeBssrdfCmd->add_flag("--gpu", probeBssrdf.gpu, "evaluate the GLSL in a compute shader");
+  probeBssrdfCmd->add_option("--gl", probeBssrdf.gl, "OpenGL context for --gpu: osmesa (default) or egl")
+      ->check(CLI::IsMember({"osmesa", "egl"}));
+  probeBssrdfCmd->add_flag("--reciprocal", probeBssrdf.reciprocal,
+                           "average with the swapped evaluation (directional dipole paper, section 6.3)");
+  probeBssrdfCmd->add_option("--in", probeBssrdf.in, "CONFIGS.csv")->required();
+  probeBssrdfCmd->add_option("--out", probeBssrdf.out, "VALUES.csv")->required();
+
+  tallow::app::ProbeProfileOptions profile;
+  auto* profileCmd = probeCmd->add_subcommand("profile", "R_d of a planar medium along x and as a 2D map, CSV + PNG");
+  profileCmd->add_option("--model", profile.model, "standard | directional | pbd | mc (volumetric Monte Carlo)")->required();
+  profileCmd->add_option("--material", profile.material, "material name from materials.csv");
+  profileCmd->add_option("--band", profile.band, "colour band of --material: 0 red, 1 green, 2 blue");
+  profileCmd->add_option("--sigma-a", profile.sigmaA, "absorption coefficient [1/mm]");
+  profileCmd->add_option("--sigma-s", profile.sigmaS, "scattering coefficient [1/mm]");
+  profileCmd->add_option("--g", profile.g, "Henyey-Greenstein mean cosine");
+  profileCmd->add_option("--eta", profile.eta, "relative index of refraction");
+  profileCmd->add_option("--theta", profile.thetaDeg, "angle of incidence [degrees]");
+  profileCmd->add_option("--extent", profile.extentMm, "side of the plotted square [mm]");
+  profileCmd->add_option("--bins", profile.bins, "samples along x and per side of the map");
+  profileCmd->add_option("--photons", profile.photons, "photon packets for --model mc");
+  profileCmd->add_option("--seed", profile.seed, "random seed for --model mc");
+  profileCmd->add_flag("!--no-plots", profile.plots, "write the CSV files only");
+  profileCmd->add_option("--out", profile.out, "output folder")->required();
+
+  tallow::app::ProbeCostOptions cost;
+  auto* costCmd = probeCmd->add_subcommand("cost", "evaluations per second of each model (CPU float/double, GLSL)");
+  costCmd->add_option("--count", cost.count, "configurations per model");
+  costCmd->add_option("--repeats", cost.repeats, "timed repeats; the median is reported");
+  costCmd->add_flag("!--no-gpu", cost.gpu, "skip the GLSL compute path");
+  costCmd->add_option("--gl", cost.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+  costCmd->add_option("--out", cost.out, "JSON file")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -74,6 +116,9 @@ int main(int argc, char** argv) {
   try {
     if (*captureCmd) return tallow::app::runCapture(capture);
     if (*paramsCmd) return listParams();
+    if (*probeBssrdfCmd) return tallow::app::runProbeBssrdf(probeBssrdf);
+    if (*profileCmd) return tallow::app::runProbeProfile(profile);
+    if (*costCmd) return tallow::app::runProbeCost(cost);
     return tallow::app::runView(view);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tallow: %s\n", e.what());

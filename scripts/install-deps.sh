@@ -17,6 +17,8 @@ packages=(
   libembree-dev
   # tests: GoogleTest, libFuzzer (clang + its runtime), a virtual display for window tests
   libgtest-dev clang libclang-rt-14-dev xvfb xauth
+  # plots of `tallow probe profile` and docs/
+  gnuplot-nox
 )
 
 missing=()
