@@ -188,6 +188,15 @@ void validateBssrdfConfig(const BssrdfConfig& c) {
   if (c.sigma_a + c.sigma_s <= 0.0) fail("sigma_a + sigma_s is 0: the medium neither scatters nor absorbs");
   if (!(std::abs(c.g) < 1.0)) fail("g is outside (-1, 1) (" + formatNumber(c.g) + ")");
   if (!(c.eta > 0.0)) fail("eta is not positive (" + formatNumber(c.eta) + ")");
+  // Bounds far beyond any material or scene (1e6 mm⁻¹ is a mean free path of a nanometre; 1e6 mm
+  // is a kilometre) but inside what the models evaluate finitely in double precision.
+  if (c.sigma_a > kMaxCoefficient || c.sigma_s > kMaxCoefficient)
+    fail("sigma_a and sigma_s must be at most " + formatNumber(kMaxCoefficient) + " /mm");
+  if (c.eta > kMaxEta || c.eta < 1.0 / kMaxEta)
+    fail("eta must be in [" + formatNumber(1.0 / kMaxEta) + ", " + formatNumber(kMaxEta) + "]");
+  for (const auto& [name, v] : vectors)
+    if (name[0] == 'x' && glm::length(v) > kMaxPosition)
+      fail(std::string(name) + " is more than " + formatNumber(kMaxPosition) + " mm from the origin");
   for (const auto& [name, v] : vectors) {
     if (name[0] == 'x') continue;
     const double length = glm::length(v);

@@ -68,6 +68,12 @@ double bssrdfMagnitude(BssrdfModel model, const BssrdfConfig& config, const Bssr
 /// within 1e-3 of 1.
 void validateBssrdfConfig(const BssrdfConfig& config);
 
+/// The input ranges validateBssrdfConfig accepts beyond the physical constraints: coefficients up
+/// to 1e6 mm⁻¹, η in [1e-3, 1e3], positions within 1e6 mm of the origin.
+inline constexpr double kMaxCoefficient = 1e6;
+inline constexpr double kMaxEta = 1e3;
+inline constexpr double kMaxPosition = 1e6;
+
 /// Quantities derived from the optical properties (shaders/bssrdf/coefficients.glsl), in double.
 struct BssrdfCoefficients {
   double sigma_t;           ///< σ_t = σ_a + σ_s

@@ -102,7 +102,9 @@ TALLOW_FN real pbdLocalScale(real t, PbdBeam b) {
 TALLOW_FN real2 pbdIntegrateFrom(real e, real dir, real len, PbdBeam b, BssrdfCoefficients k, int panelsPerEfold) {
   real rho = pbdLocalScale(e, b);
   real uEnd = asinh(len / rho);
-  int n = clamp(int(ceil(uEnd * real(panelsPerEfold))), 1, PBD_MAX_PANELS_PER_HALF);
+  // Clamp in floating point before converting: a NaN or huge value must not reach int().
+  real panels = ceil(uEnd * real(panelsPerEfold));
+  int n = panels >= real(1) ? int(min(panels, real(PBD_MAX_PANELS_PER_HALF))) : 1;
   real du = uEnd / real(n);
   real2 sum = real2(0);
   for (int p = 0; p < n; ++p) {
