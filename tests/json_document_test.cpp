@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/error_of.h"
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -15,15 +17,9 @@ namespace {
 using json = nlohmann::json;
 using Ptr = json::json_pointer;
 
-/// The message of the InputError that `f` throws, or "" when it throws none.
 template <typename F>
 std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorOf<InputError>(std::forward<F>(f));
 }
 
 std::string at(const JsonDocument& doc, const char* ptr) { return doc.locate(Ptr(ptr)).str(); }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/error_of.h"
+
 #include <cmath>
 #include <set>
 #include <string>
@@ -22,12 +24,7 @@ constexpr const char* kCsv =
 
 template <typename F>
 std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorOf<InputError>(std::forward<F>(f));
 }
 
 class RegistryTest : public ::testing::Test {
