@@ -42,6 +42,7 @@ int runView(const ViewOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; !glfwWindowShouldClose(window) && (options.frames == 0 || frame < options.frames); ++frame) {
     glfwPollEvents();
+    if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
     int width = 0, height = 0;
     glfwGetFramebufferSize(window, &width, &height);
     if (width == 0 || height == 0) continue;  // minimised
