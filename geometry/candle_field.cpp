@@ -1,0 +1,200 @@
+#include "geometry/candle_field.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Composite.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/LevelSetFilter.h>
+#include <openvdb/tools/LevelSetSphere.h>
+#include <openvdb/tools/MeshToVolume.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace tallow::geometry {
+
+struct detail::CandleGrid {
+  openvdb::FloatGrid::Ptr grid;
+  // Closed-form shape parameters at this t (metres).
+  double rimHeight = 0.0;
+  double cupDepth = 0.0;
+  double cupRadius = 0.0;
+  glm::dvec3 flame{0.0};
+};
+
+namespace {
+
+/// Half-width of the narrow band in voxels (OpenVDB's default, 3).
+constexpr float kHalfWidthVoxels = 3.0f;
+/// Segments of the polygonal cylinders; the chord error R·(1 − cos(π/N)) is 10 µm at R = 2 cm.
+constexpr int kCylinderSegments = 96;
+
+void initialiseOpenVdb() {
+  static std::once_flag once;
+  std::call_once(once, [] { openvdb::initialize(); });
+}
+
+double smoothstep(double a, double b, double x) {
+  const double u = std::clamp((x - a) / (b - a), 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+/// Level set of a closed y-aligned cylinder (axis through x = z = 0) from y0 to y1, by OpenVDB's
+/// mesh-to-level-set on a polygonal cylinder (OpenVDB 10 has no cylinder primitive).
+openvdb::FloatGrid::Ptr cylinder(double radius, double y0, double y1, const openvdb::math::Transform& xform) {
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  constexpr auto n = static_cast<unsigned>(kCylinderSegments);
+  for (unsigned i = 0; i < n; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / n;
+    const auto x = static_cast<float>(radius * std::cos(a)), z = static_cast<float>(radius * std::sin(a));
+    points.emplace_back(x, static_cast<float>(y0), z);
+    points.emplace_back(x, static_cast<float>(y1), z);
+  }
+  const unsigned bottom = 2 * n, top = 2 * n + 1;
+  points.emplace_back(0.0f, static_cast<float>(y0), 0.0f);
+  points.emplace_back(0.0f, static_cast<float>(y1), 0.0f);
+  for (unsigned i = 0; i < n; ++i) {
+    const unsigned j = (i + 1) % n;
+    const unsigned b0 = 2 * i, t0 = 2 * i + 1, b1 = 2 * j, t1 = 2 * j + 1;
+    triangles.emplace_back(b0, t0, t1);
+    triangles.emplace_back(b0, t1, b1);
+    triangles.emplace_back(bottom, b0, b1);
+    triangles.emplace_back(top, t1, t0);
+  }
+  return openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(xform, points, triangles, kHalfWidthVoxels);
+}
+
+openvdb::FloatGrid::Ptr sphere(double radius, glm::dvec3 centre, double voxelSize) {
+  return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+      static_cast<float>(radius), openvdb::Vec3f(static_cast<float>(centre.x), static_cast<float>(centre.y),
+                                                  static_cast<float>(centre.z)),
+      static_cast<float>(voxelSize), kHalfWidthVoxels);
+}
+
+/// The candle at s = t / durationS ∈ [0, 1], from scratch: nothing depends on earlier frames.
+std::shared_ptr<detail::CandleGrid> build(double s, const CandleParams& p) {
+  initialiseOpenVdb();
+  auto out = std::make_shared<detail::CandleGrid>();
+  const auto xform = openvdb::math::Transform::createLinearTransform(p.voxelSize);
+
+  // Height burns down linearly; the cup forms quickly after lighting (a shallow dent at t = 0).
+  const double h = p.height * (1.0 - p.burnFraction * s);
+  const double d = p.cupDepth * (0.35 + 0.65 * smoothstep(0.0, 0.25, s));
+  const double cupR = p.radius - p.rimWidth;
+  out->rimHeight = h;
+  out->cupDepth = d;
+  out->cupRadius = cupR;
+
+  auto wax = cylinder(p.radius, 0.0, h, *xform);
+
+  // Drips: chains of spheres hugging the side, each starting at its own time and running down
+  // over 30% of the animation to its own length, thickening into a bead at the bottom end.
+  for (int i = 0; i < p.dripCount; ++i) {
+    const double start = 0.08 + 0.8 * i / std::max(1, p.dripCount);
+    const double maxLength = p.height * (0.2 + 0.06 * ((2 * i) % 3));
+    const double length = std::min(maxLength * smoothstep(start, start + 0.3, s), h - 2.0 * p.dripRadius);
+    if (length < p.dripRadius) continue;
+    const double angle = 2.0 * std::numbers::pi * (0.11 + 0.382 * i);
+    const glm::dvec3 dir(std::cos(angle), 0.0, std::sin(angle));
+    const double top = h - 0.002;
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * p.dripRadius))));
+    for (int k = 0; k <= steps; ++k) {
+      const double u = static_cast<double>(k) / steps;
+      const double r = p.dripRadius * (0.7 + 0.5 * u * u);
+      const glm::dvec3 centre = dir * (p.radius - 0.2 * r) + glm::dvec3(0.0, top - u * length, 0.0);
+      auto bead = sphere(r, centre, p.voxelSize);
+      openvdb::tools::csgUnion(*wax, *bead);
+    }
+  }
+
+  // The cup: a spherical bowl of depth d that meets the top at radius cupR, leaving the rim.
+  const double bowlR = (cupR * cupR + d * d) / (2.0 * d);
+  auto bowl = sphere(bowlR, glm::dvec3(0.0, h - d + bowlR, 0.0), p.voxelSize);
+  openvdb::tools::csgDifference(*wax, *bowl);
+
+  // Mean-curvature flow rounds the rim's edges and blends the drips into the side.
+  if (p.smoothingIterations > 0) {
+    openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*wax);
+    for (int k = 0; k < p.smoothingIterations; ++k) filter.meanCurvature();
+  }
+
+  // The wick stands in the middle of the cup, rooted in the wax below it (after smoothing, so
+  // that the thin wick keeps its shape).
+  const double cupBottom = h - d;
+  auto wick = cylinder(p.wickRadius, cupBottom - 0.004, cupBottom + p.wickLength, *xform);
+  openvdb::tools::csgUnion(*wax, *wick);
+
+  out->flame = glm::dvec3(0.0, cupBottom + p.wickLength + 0.004, 0.0);
+  out->grid = wax;
+  return out;
+}
+
+/// The last grid built (for any CandleField), so that re-constructing the same t is cheap.
+std::shared_ptr<const detail::CandleGrid> cachedBuild(double s, const CandleParams& p) {
+  static std::mutex mutex;
+  static double lastS = -1.0;
+  static CandleParams lastParams;
+  static std::shared_ptr<const detail::CandleGrid> last;
+  const std::lock_guard lock(mutex);
+  if (!last || lastS != s || !(lastParams == p)) {
+    last = build(s, p);
+    lastS = s;
+    lastParams = p;
+  }
+  return last;
+}
+
+}  // namespace
+
+CandleField::CandleField(double t, const CandleParams& params) : params_(params), t_(t) {
+  const CandleParams& p = params_;
+  if (!(p.radius > 0.0) || !(p.height > 0.0) || !(p.durationS > 0.0) || !(p.burnFraction >= 0.0) ||
+      !(p.burnFraction < 0.9) || !(p.rimWidth > 0.0) || !(p.rimWidth < 0.5 * p.radius) || !(p.cupDepth > 0.0) ||
+      !(p.wickRadius > 0.0) || !(p.wickLength > 0.0) || p.dripCount < 0 || !(p.dripRadius > 0.0) ||
+      !(p.voxelSize > 0.0) || !(p.voxelSize <= p.wickRadius) || p.smoothingIterations < 0 ||
+      !std::isfinite(t))
+    throw std::invalid_argument("CandleParams: sizes must be > 0, rimWidth < radius / 2, burnFraction in [0, 0.9), voxelSize ≤ wickRadius");
+  grid_ = cachedBuild(std::clamp(t / p.durationS, 0.0, 1.0), p);
+}
+
+CandleField::~CandleField() = default;
+CandleField::CandleField(const CandleField&) = default;
+CandleField& CandleField::operator=(const CandleField&) = default;
+
+double CandleField::value(glm::dvec3 p) const {
+  const openvdb::FloatGrid& grid = *grid_->grid;
+  const openvdb::Vec3d ijk = grid.worldToIndex(openvdb::Vec3d(p.x, p.y, p.z));
+  // An unsafe (unregistered) accessor per call: value() runs on many threads at once.
+  const auto accessor = grid.getConstUnsafeAccessor();
+  return static_cast<double>(openvdb::tools::BoxSampler::sample(accessor, ijk));
+}
+
+glm::dvec3 CandleField::gradient(glm::dvec3 p) const {
+  const double h = 0.5 * params_.voxelSize;
+  return glm::dvec3(value(p + glm::dvec3(h, 0, 0)) - value(p - glm::dvec3(h, 0, 0)),
+                    value(p + glm::dvec3(0, h, 0)) - value(p - glm::dvec3(0, h, 0)),
+                    value(p + glm::dvec3(0, 0, h)) - value(p - glm::dvec3(0, 0, h))) /
+         (2.0 * h);
+}
+
+Aabb CandleField::bounds() const {
+  const openvdb::FloatGrid& grid = *grid_->grid;
+  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
+  const openvdb::Vec3d lo = grid.indexToWorld(box.min().asVec3d()), hi = grid.indexToWorld(box.max().asVec3d());
+  Aabb out;
+  out.extend(glm::vec3(static_cast<float>(lo.x()), static_cast<float>(lo.y()), static_cast<float>(lo.z())));
+  out.extend(glm::vec3(static_cast<float>(hi.x()), static_cast<float>(hi.y()), static_cast<float>(hi.z())));
+  return out;
+}
+
+glm::dvec3 CandleField::flamePosition() const { return grid_->flame; }
+double CandleField::rimHeight() const { return grid_->rimHeight; }
+double CandleField::cupRadius() const { return grid_->cupRadius; }
+double CandleField::currentCupDepth() const { return grid_->cupDepth; }
+double CandleField::bandWidth() const { return static_cast<double>(kHalfWidthVoxels) * params_.voxelSize; }
+
+}  // namespace tallow::geometry
