@@ -1,0 +1,209 @@
+#include "geometry/gpu_dual_contouring.h"
+
+#include <array>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace tallow::geometry {
+namespace {
+
+constexpr GLuint kWorkGroup = 64;                        ///< local_size_x of both compute passes
+constexpr int kVertexStride = 7 * sizeof(float);         ///< position, normal, cell (int bits)
+constexpr int kMeshStride = 6 * sizeof(float);           ///< position, normal
+constexpr GLuint kPointsPerBlock = GpuDualContouring::kBlockCells * GpuDualContouring::kBlockCells *
+                                   GpuDualContouring::kBlockCells;
+
+std::string blockDefine() { return "BLOCK_CELLS " + std::to_string(GpuDualContouring::kBlockCells); }
+
+GLuint groupsFor(std::size_t items) { return static_cast<GLuint>((items + kWorkGroup - 1) / kWorkGroup); }
+
+}  // namespace
+
+GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis) : n_(samplesPerAxis) {
+  if (n_ < 2) throw std::runtime_error("GpuDualContouring: need at least 2 samples per axis, got " + std::to_string(n_));
+  const std::size_t cells = static_cast<std::size_t>(n_ - 1);
+  blocks_ = (n_ - 1 + kBlockCells - 1) / kBlockCells;
+  vertexCapacity_ = std::min(cells * cells * cells, kVerticesPerFaceCell * cells * cells);
+  triangleCapacity_ = kTrianglesPerVertex * vertexCapacity_;
+  const std::size_t bytes = vertexCapacity_ * kVertexStride + triangleCapacity_ * 3 * kMeshStride;
+  if (bytes > kMaxBufferBytes)
+    throw std::runtime_error("GpuDualContouring: " + std::to_string(n_) + "^3 lattice needs " +
+                             std::to_string(bytes >> 20) + " MiB of buffers, over the " +
+                             std::to_string(kMaxBufferBytes >> 20) + " MiB cap");
+
+  const std::vector<std::string> defines{blockDefine()};
+  classify_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/classify.comp"}}, defines});
+  vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
+                                      {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
+                                     defines, {"tfPosition", "tfNormal", "tfCell"}});
+  indexMap_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/index_map.comp"}}, defines});
+  quads_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
+                                   {GL_GEOMETRY_SHADER, "dual_contouring/quads.geom"}},
+                                  defines, {"tfPosition", "tfNormal"}});
+
+  field_ = gpu::Texture::create3D(GL_R32F, n_, n_, n_);
+  field_.setFilter(GL_LINEAR, GL_LINEAR);
+  field_.setWrap(GL_CLAMP_TO_EDGE);
+  indices_ = gpu::Texture::create3D(GL_R32I, n_ - 1, n_ - 1, n_ - 1);
+  activeBlocks_ = gpu::Buffer(blockCount() * sizeof(GLuint));
+  drawCommand_ = gpu::Buffer(4 * sizeof(GLuint));
+  vertexCounter_ = gpu::Buffer(4 * sizeof(GLuint));
+  vertexBuffer_ = gpu::Buffer(vertexCapacity_ * kVertexStride);
+  meshBuffer_ = gpu::Buffer(triangleCapacity_ * 3 * kMeshStride);
+  vertexFeedback_.bindBuffer(0, vertexBuffer_);
+  meshFeedback_.bindBuffer(0, meshBuffer_);
+  meshVao_.setAttribute(0, meshBuffer_, 0, kMeshStride, 3);
+  meshVao_.setAttribute(1, meshBuffer_, 3 * sizeof(float), kMeshStride, 3);
+  vertexGenerated_ = gpu::Query(GL_PRIMITIVES_GENERATED);
+  vertexWritten_ = gpu::Query(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  meshGenerated_ = gpu::Query(GL_PRIMITIVES_GENERATED);
+  meshWritten_ = gpu::Query(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  timerStart_ = gpu::Query(GL_TIMESTAMP);
+  timerStop_ = gpu::Query(GL_TIMESTAMP);
+
+  for (gpu::Program* p : {&classify_, &vertices_, &quads_}) {
+    p->set("uField", 0);
+    p->set("uSamples", n_);
+    p->set("uBlocks", blocks_);
+  }
+  indexMap_.set("uSamples", n_);
+  glProgramUniform1ui(indexMap_.id(), indexMap_.location("uCapacity"), static_cast<GLuint>(vertexCapacity_));
+}
+
+void GpuDualContouring::upload(const SampledLattice& lattice) {
+  if (lattice.n != n_)
+    throw std::runtime_error("GpuDualContouring::upload: lattice has " + std::to_string(lattice.n) +
+                             " samples per axis, built for " + std::to_string(n_));
+  glTextureSubImage3D(field_.id(), 0, 0, 0, 0, n_, n_, n_, GL_RED, GL_FLOAT, lattice.values.data());
+  origin_ = glm::vec3(lattice.origin);
+  cellSize_ = static_cast<float>(lattice.cellSize);
+  for (gpu::Program* p : {&vertices_, &quads_}) {
+    p->set("uOrigin", origin_);
+    p->set("uCellSize", cellSize_);
+  }
+  uploaded_ = true;
+}
+
+void GpuDualContouring::extract() {
+  if (!uploaded_) throw std::runtime_error("GpuDualContouring::extract: upload() a lattice first");
+  glQueryCounter(timerStart_.id(), GL_TIMESTAMP);
+  const std::array<GLuint, 4> drawReset{kPointsPerBlock, 0, 0, 0};  // count, instances, first, base
+  const std::array<GLuint, 4> counterReset{0, 0, 1, 1};             // vertices, groups x, y, z
+  drawCommand_.upload(0, sizeof(drawReset), drawReset.data());
+  vertexCounter_.upload(0, sizeof(counterReset), counterReset.data());
+  const GLint noVertex = -1;
+  glClearTexImage(indices_.id(), 0, GL_RED_INTEGER, GL_INT, &noVertex);
+  field_.bind(0);
+
+  // 1. Classify blocks.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, activeBlocks_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, drawCommand_.id());
+  classify_.use();
+  glDispatchCompute(groupsFor(blockCount()), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+  // 2. Vertices of the active blocks' sign-changing cells.
+  glEnable(GL_RASTERIZER_DISCARD);
+  emptyVao_.bind();
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, drawCommand_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, vertexCounter_.id());
+  vertices_.use();
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, vertexFeedback_.id());
+  glBeginQuery(GL_PRIMITIVES_GENERATED, vertexGenerated_.id());
+  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, vertexWritten_.id());
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArraysIndirect(GL_POINTS, nullptr);
+  glEndTransformFeedback();
+  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  glEndQuery(GL_PRIMITIVES_GENERATED);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+  // 3. Index map, one invocation per captured vertex (indirect dispatch from the counter).
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertexBuffer_.id());
+  glBindImageTexture(0, indices_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32I);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, vertexCounter_.id());
+  indexMap_.use();
+  glDispatchComputeIndirect(sizeof(GLuint));
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+  // 4. Quads of the sign-changing edges → mesh buffer.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, activeBlocks_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, vertexBuffer_.id());
+  glBindImageTexture(0, indices_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32I);
+  quads_.use();
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, meshFeedback_.id());
+  glBeginQuery(GL_PRIMITIVES_GENERATED, meshGenerated_.id());
+  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, meshWritten_.id());
+  glBeginTransformFeedback(GL_TRIANGLES);
+  glDrawArraysIndirect(GL_POINTS, nullptr);
+  glEndTransformFeedback();
+  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  glEndQuery(GL_PRIMITIVES_GENERATED);
+
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glBindVertexArray(0);
+  glDisable(GL_RASTERIZER_DISCARD);
+  glQueryCounter(timerStop_.id(), GL_TIMESTAMP);
+}
+
+void GpuDualContouring::draw() const {
+  meshVao_.bind();
+  glDrawTransformFeedback(GL_TRIANGLES, meshFeedback_.id());
+  glBindVertexArray(0);
+}
+
+void GpuDualContouring::checkOverflow() const {
+  if (vertexGenerated_.result() > vertexWritten_.result())
+    throw std::runtime_error("GpuDualContouring: vertex buffer overflow (" + std::to_string(vertexGenerated_.result()) +
+                             " vertices > capacity " + std::to_string(vertexCapacity_) + ")");
+  if (meshGenerated_.result() > meshWritten_.result())
+    throw std::runtime_error("GpuDualContouring: mesh buffer overflow (" + std::to_string(meshGenerated_.result()) +
+                             " triangles > capacity " + std::to_string(triangleCapacity_) + ")");
+}
+
+std::size_t GpuDualContouring::triangleCount() const { return meshWritten_.result(); }
+std::size_t GpuDualContouring::vertexCount() const { return vertexWritten_.result(); }
+double GpuDualContouring::lastExtractionMs() const {
+  return static_cast<double>(timerStop_.result() - timerStart_.result()) * 1e-6;
+}
+
+std::size_t GpuDualContouring::activeBlockCount() const {
+  std::array<GLuint, 4> command{};
+  drawCommand_.download(0, sizeof(command), command.data());
+  return command[1];
+}
+
+std::size_t GpuDualContouring::bufferBytes() const {
+  return activeBlocks_.size() + drawCommand_.size() + vertexCounter_.size() + vertexBuffer_.size() +
+         meshBuffer_.size() + field_.bytes() + indices_.bytes();
+}
+
+TriangleMesh GpuDualContouring::readBack() const {
+  checkOverflow();
+  const std::size_t triangles = triangleCount();
+  std::vector<float> data(triangles * 3 * 6);
+  if (!data.empty()) meshBuffer_.download(0, data.size() * sizeof(float), data.data());
+  // Weld by exact position: every corner of a quad is copied from the same vertex-buffer entry.
+  TriangleMesh mesh;
+  std::map<std::tuple<float, float, float>, std::uint32_t> welded;
+  mesh.triangles.resize(triangles);
+  for (std::size_t t = 0; t < triangles; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float* v = &data[(3 * t + k) * 6];
+      const auto [it, inserted] = welded.try_emplace({v[0], v[1], v[2]}, static_cast<std::uint32_t>(mesh.positions.size()));
+      if (inserted) {
+        mesh.positions.emplace_back(v[0], v[1], v[2]);
+        mesh.normals.emplace_back(v[3], v[4], v[5]);
+      }
+      mesh.triangles[t][k] = it->second;
+    }
+  return mesh;
+}
+
+}  // namespace tallow::geometry

@@ -1,0 +1,79 @@
+#pragma once
+// GPU dual contouring (surface nets after Gibson 1998, as the radiosity-maps paper §4 cites) of a
+// SampledLattice uploaded as a GL_R32F 3D texture. Four passes, all on the GPU:
+//   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
+//      indirect draw command (instances = active blocks);
+//   2. cells.vert + vertices.geom: one vertex per sign-changing cell (mean of edge crossings,
+//      normal from the texture's gradient) captured by transform feedback;
+//   3. index_map.comp: vertex index (emission order) → GL_R32I 3D index map, dispatched indirectly;
+//   4. cells.vert + quads.geom: two triangles per sign-changing edge, outward winding, captured by
+//      transform feedback into the mesh buffer, drawn with glDrawTransformFeedback.
+// Nothing is read back in extract() or draw(); the query-based accessors are for tests and stats.
+#include "geometry/grid_sampler.h"
+#include "geometry/triangle_mesh.h"
+#include "gpu/gl_objects.h"
+#include "gpu/program.h"
+#include "gpu/shader_library.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace tallow::geometry {
+
+class GpuDualContouring {
+ public:
+  static constexpr int kBlockCells = 4;  ///< block edge in cells: 64 points per block instance
+  /// Vertex capacity = min(cells, kVerticesPerFaceCell · (n − 1)²): a closed surface inside the
+  /// lattice crosses O(n²) cells; 24 is 4× the cube's six faces, room for folded blob shapes.
+  static constexpr std::size_t kVerticesPerFaceCell = 24;
+  /// Triangles per vertex: a closed quad mesh has ~1 quad (2 triangles) per vertex (Euler); 3 is slack.
+  static constexpr std::size_t kTrianglesPerVertex = 3;
+  /// Total buffer memory cap; a lattice that would need more throws at construction.
+  static constexpr std::size_t kMaxBufferBytes = std::size_t{512} << 20;
+
+  /// Builds the programs and sizes every buffer for n³ samples (n ≥ 2). Needs a current GL 4.5
+  /// context. Throws std::runtime_error when the buffers would exceed kMaxBufferBytes.
+  GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis);
+
+  /// Copies `lattice` into the GL_R32F 3D texture (n must match the constructor's).
+  void upload(const SampledLattice& lattice);
+  /// Runs the four passes on the uploaded lattice; no CPU read-back, no stall.
+  void extract();
+  /// Draws the last extraction as GL_TRIANGLES with the caller's program bound (attribute 0:
+  /// position in world units, 1: unit normal), by glDrawTransformFeedback.
+  void draw() const;
+
+  // --- Read-back (tests, `tallow mesh`, stats); each waits for the GPU. ---
+  /// The last extraction as an indexed mesh (vertices shared by exact position); throws
+  /// std::runtime_error when a buffer overflowed.
+  TriangleMesh readBack() const;
+  std::size_t triangleCount() const;   ///< GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN of pass 4
+  std::size_t vertexCount() const;     ///< vertices captured in pass 2
+  std::size_t activeBlockCount() const;
+  std::size_t blockCount() const { return static_cast<std::size_t>(blocks_) * blocks_ * blocks_; }
+  /// GPU time of the last extract() from GL_TIMESTAMP queries (llvmpipe's first GL_TIME_ELAPSED
+  /// of a context reads garbage, so the pair of timestamps is used instead).
+  double lastExtractionMs() const;
+  /// Throws std::runtime_error (one line) when the last extraction dropped vertices or triangles.
+  void checkOverflow() const;
+
+  std::size_t vertexCapacity() const { return vertexCapacity_; }
+  std::size_t triangleCapacity() const { return triangleCapacity_; }
+  std::size_t bufferBytes() const;     ///< GPU memory of buffers, texture and index map
+
+ private:
+  int n_ = 0, blocks_ = 0;
+  std::size_t vertexCapacity_ = 0, triangleCapacity_ = 0;
+  glm::vec3 origin_{0.0f};
+  float cellSize_ = 0.0f;
+  bool uploaded_ = false;
+
+  gpu::Program classify_, vertices_, indexMap_, quads_;
+  gpu::Texture field_, indices_;
+  gpu::Buffer activeBlocks_, drawCommand_, vertexCounter_, vertexBuffer_, meshBuffer_;
+  gpu::TransformFeedback vertexFeedback_, meshFeedback_;
+  gpu::VertexArray emptyVao_, meshVao_;
+  gpu::Query vertexGenerated_, vertexWritten_, meshGenerated_, meshWritten_, timerStart_, timerStop_;
+};
+
+}  // namespace tallow::geometry
