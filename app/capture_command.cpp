@@ -61,7 +61,6 @@ int runCapture(const CaptureOptions& options) {
   run.gl = context->info();
   run.width = config.render.width;
   run.height = config.render.height;
-  run.triangles = renderer.triangleCount();
   run.plan = sss::Renderer::plan(config.scene, config.render);
   run.parameters = parameterRegistry(loaded.materials).snapshot(config);
   if (options.scene.explain)
@@ -81,6 +80,7 @@ int runCapture(const CaptureOptions& options) {
     run.frames.push_back(std::move(frame));
   }
   run.gpuBytes = renderer.gpuBytes();
+  run.triangles = renderer.triangleCount();  // after the frames: includes the last field extraction
 
   std::filesystem::create_directories(out);
   for (int i = 0; i < options.frames; ++i) {

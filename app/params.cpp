@@ -100,6 +100,12 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                 0.0),
                     [](auto& c) -> auto& { return c.render.toneMap.exposureEv; }));
 
+  r.add(bind<int>(withDefault(declare("field.res", "int", "samples per axis",
+                                      "Lattice resolution of field objects, isosurfaced on the GPU every frame.", 16,
+                                      256),
+                              64),
+                  [](auto& c) -> auto& { return c.render.fieldRes; }));
+
   // --- Scene-bound: no default; the preset gives the value --------------------------------------
   {
     Param p = declare("scale", "float", "m", "Size of the first object (mesh: largest extent of its bounding box).",

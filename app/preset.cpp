@@ -51,7 +51,12 @@ const std::vector<std::string> kCameraKeys = {"type", "position", "target", "up"
 const std::vector<std::string> kDirectionalKeys = {"type", "direction", "irradiance", "shadows"};
 const std::vector<std::string> kPointKeys = {"type", "position", "intensity", "shadows"};
 const std::vector<std::string> kObjectKeys = {"name",     "mesh",   "shape",    "size",        "material",
-                                              "albedo",   "position", "rotation_deg", "scale"};
+                                              "albedo",   "position", "rotation_deg", "scale", "field"};
+const std::vector<std::string> kBlobFieldKeys = {"type", "scale"};
+const std::vector<std::string> kCandleFieldKeys = {"type", "duration_s"};
+const std::vector<std::string> kMeshFieldKeys = {"type", "mesh"};
+constexpr Range kBlobScale{0.0, 1e3, true};      ///< metres per unscaled blob unit
+constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< seconds until the candle has burnt down
 const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta"};
 const std::vector<std::string> kAnimationKeys = {"duration_s", "loop"};
 
@@ -244,10 +249,23 @@ class PresetReader {
     checkKeys(p, kObjectKeys, "an object");
     sss::SceneObject object;
     const bool isMesh = has(p, "mesh");
+    const bool isField = has(p, "field");
     if (isMesh && has(p, "shape")) doc_.failAtKey(p / "shape", "an object has \"mesh\" or \"shape\", not both");
-    if (!isMesh && !has(p, "shape")) doc_.fail(p, "an object needs \"mesh\" (a file) or \"shape\"");
+    if (isField && (isMesh || has(p, "shape")))
+      doc_.failAtKey(p / "field", "an object has \"field\", \"mesh\" or \"shape\", only one of them");
+    if (!isMesh && !isField && !has(p, "shape"))
+      doc_.fail(p, "an object needs \"mesh\" (a file), \"shape\" or \"field\"");
 
-    if (isMesh) {
+    if (isField) {
+      object.shape = sss::ShapeKind::Field;
+      object.field = readField(p / "field");
+      object.name = object.field.kind == sss::FieldKind::Blob     ? "blob"
+                    : object.field.kind == sss::FieldKind::Candle ? "candle"
+                                                                  : object.field.meshPath.stem().string();
+      if (object.field.kind != sss::FieldKind::Mesh && has(p, "scale"))
+        doc_.failAtKey(p / "scale", "\"scale\" applies to mesh fields; a blob is sized by its field's \"scale\", a "
+                                    "candle is fixed");
+    } else if (isMesh) {
       object.shape = sss::ShapeKind::Mesh;
       object.meshPath = meshPath(p / "mesh");
       object.name = object.meshPath.stem().string();
@@ -267,7 +285,8 @@ class PresetReader {
         object.size = vec3(size, "size", kExtent);
       } else {
         doc_.failAtKey(size, "\"size\" applies to planes and boxes; " +
-                                 std::string(isMesh ? "a mesh" : "a sphere") + " is sized by \"scale\"");
+                                 std::string(isField ? "a field" : isMesh ? "a mesh" : "a sphere") +
+                                 " is sized by \"scale\"");
       }
     }
     object.name = optString(p, "name").value_or(object.name);
@@ -280,6 +299,34 @@ class PresetReader {
     object.transform.rotationDeg = optVec3(p, "rotation_deg", kAngleDeg).value_or(glm::vec3(0.0f));
     object.transform.scale = optNumber(p, "scale", paramRange("scale")).value_or(1.0f);
     return object;
+  }
+
+  /// "field": {"type": "blob" | "candle" | "mesh", …}; the keys allowed depend on the type.
+  sss::FieldDesc readField(const Ptr& p) const {
+    if (!at(p).is_object()) doc_.fail(p, "field: expected an object with a \"type\"");
+    sss::FieldDesc field;
+    const std::string type = choice(require(p, "type"), "type", {"blob", "candle", "mesh"});
+    if (type == "blob") {
+      checkKeys(p, kBlobFieldKeys, "a blob field");
+      field.kind = sss::FieldKind::Blob;
+      field.blobScale = optNumber(p, "scale", kBlobScale).value_or(static_cast<float>(field.blobScale));
+    } else if (type == "candle") {
+      checkKeys(p, kCandleFieldKeys, "a candle field");
+      field.kind = sss::FieldKind::Candle;
+      field.candleDurationS = optNumber(p, "duration_s", kCandleDurationS).value_or(static_cast<float>(field.candleDurationS));
+    } else {
+      checkKeys(p, kMeshFieldKeys, "a mesh field");
+      field.kind = sss::FieldKind::Mesh;
+      const Ptr mesh = require(p, "mesh");
+      field.meshPath = meshPath(mesh);
+      // MODELS.md: Stanford asks that the Dragon not be animated, morphed, boolean-processed or
+      // shown damaged; a level set is the path to melting, so it is refused here.
+      if (field.meshPath.filename() == "dragon.ply")
+        doc_.fail(mesh, "mesh: dragon.ply cannot be a field: Stanford's terms for the Dragon forbid animating, "
+                        "morphing, boolean-processing or showing it damaged (see data/MODELS.md); use it as a "
+                        "static \"mesh\" object instead");
+    }
+    return field;
   }
 
   fs::path meshPath(const Ptr& p) const {

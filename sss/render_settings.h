@@ -12,6 +12,7 @@ struct RenderSettings {
   int shadowMapSize = 0;      ///< render.shadow_map_size [texels]
   float shadowBias = 0.0f;    ///< render.shadow_bias [shadow-map texels along the normal]
   int pcfRadius = 0;          ///< render.pcf_radius [texels]
+  int fieldRes = 0;           ///< field.res [lattice samples per axis]
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
 };
 

@@ -32,13 +32,22 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
-    : geometry_(scene), shadows_(shaders), surface_(shaders), display_(shaders) {
+    : geometry_(scene), fields_(std::make_unique<FieldObjects>(shaders, scene)), shadows_(shaders),
+      surface_(shaders), display_(shaders) {
   checkLimits(scene, settings);
   ensureTargets(settings.width, settings.height);
 }
 
 std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings& settings) {
   std::vector<PlannedPass> passes;
+  if (FieldObjects::any(scene)) {
+    int n = 0;
+    for (const SceneObject& o : scene.objects) n += o.shape == ShapeKind::Field ? 1 : 0;
+    passes.push_back({"field.sample", std::to_string(n) + " field object(s) at a new time: sampled on the CPU on a " +
+                                          std::to_string(settings.fieldRes) + "^3 lattice and uploaded"});
+    passes.push_back({"field.extract", "GPU dual contouring (surface nets) of the uploaded lattice(s) into "
+                                       "transform-feedback buffers"});
+  }
   int dirShadowed = 0, pointShadowed = 0;
   for (const Light& l : scene.lights)
     if (l.castsShadows) (l.kind == LightKind::Directional ? dirShadowed : pointShadowed)++;
@@ -54,6 +63,14 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
   return passes;
 }
 
+std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSettings& settings,
+                                             double timeS) const {
+  std::vector<PlannedPass> passes = plan(scene, settings);
+  if (!fields_->stale(timeS, settings.fieldRes))
+    std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("field.", 0) == 0; });
+  return passes;
+}
+
 void Renderer::ensureTargets(int width, int height) {
   if (radiance_.id() && radiance_.width() == width && radiance_.height() == height) return;
   radiance_ = gpu::Texture::create2D(GL_RGBA32F, width, height);
@@ -66,15 +83,20 @@ void Renderer::ensureTargets(int width, int height) {
   target_.checkComplete("camera target");
 }
 
-FrameTimings Renderer::render(const Scene& scene, const RenderSettings& settings, double /*timeS: static scenes*/) {
+FrameTimings Renderer::render(const Scene& scene, const RenderSettings& settings, double timeS) {
   checkLimits(scene, settings);
   ensureTargets(settings.width, settings.height);
   geometry_.update(scene);
   timer_.beginFrame();
   shadows_.reset(scene.lights.size());
-  for (const PlannedPass& pass : plan(scene, settings)) {
+  for (const PlannedPass& pass : planFrame(scene, settings, timeS)) {
     gpu::GpuScope scope(timer_, pass.name);
-    if (pass.name == "shadow.directional") {
+    if (pass.name == "field.sample") {
+      fields_->sample(timeS, settings.fieldRes, geometry_);
+      geometry_.update(scene);
+    } else if (pass.name == "field.extract") {
+      fields_->extract();
+    } else if (pass.name == "shadow.directional") {
       shadows_.renderDirectional(scene, settings, geometry_);
     } else if (pass.name == "shadow.point") {
       shadows_.renderPoint(scene, settings, geometry_);
@@ -101,7 +123,7 @@ void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapS
 gpu::Image Renderer::readRadiance() const { return gpu::readColor(target_, 0, radiance_.width(), radiance_.height()); }
 
 std::size_t Renderer::gpuBytes() const {
-  return radiance_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes();
+  return radiance_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes();
 }
 
 }  // namespace tallow::sss

@@ -11,6 +11,7 @@
 #include "gpu/image.h"
 #include "gpu/shader_library.h"
 #include "sss/display_pass.h"
+#include "sss/field_objects.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
@@ -38,7 +39,11 @@ class Renderer {
   /// Compiles the passes and uploads the scene's shapes. Needs a current GL 4.5 context.
   Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings);
 
+  /// The passes of a first frame (field objects are always sampled and extracted then).
   static std::vector<PlannedPass> plan(const Scene& scene, const RenderSettings& settings);
+  /// The passes render(scene, settings, timeS) runs now: "field.sample" and "field.extract" only
+  /// when a field object must be isosurfaced again (t or field.res changed since the last frame).
+  std::vector<PlannedPass> planFrame(const Scene& scene, const RenderSettings& settings, double timeS) const;
 
   /// Renders the frame at time `timeS` into the HDR target (settings.width × settings.height).
   /// `scene` must have the same objects as at construction; transforms and parameters may change.
@@ -48,13 +53,16 @@ class Renderer {
 
   gpu::Image readRadiance() const;  ///< the last frame, linear, top row first
   const gpu::Texture& radiance() const { return radiance_; }
-  std::size_t triangleCount() const { return geometry_.triangleCount(); }
-  std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes
+  /// Meshes, primitives and the last extraction of every field object; the field count reads a
+  /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
+  std::size_t triangleCount() const { return geometry_.triangleCount() + fields_->triangleCount(); }
+  std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers
 
  private:
   void ensureTargets(int width, int height);
 
   SceneGeometry geometry_;
+  std::unique_ptr<FieldObjects> fields_;
   ShadowPass shadows_;
   SurfacePass surface_;
   DisplayPass display_;

@@ -11,13 +11,24 @@
 
 namespace tallow::sss {
 
-enum class ShapeKind { Mesh, Sphere, Plane, Box };
+enum class ShapeKind { Mesh, Sphere, Plane, Box, Field };
+
+/// A procedural field isosurfaced every frame on the GPU (ShapeKind::Field, preset key "field").
+enum class FieldKind { Blob, Candle, Mesh };
+
+struct FieldDesc {
+  FieldKind kind = FieldKind::Blob;
+  double blobScale = 0.03;        ///< blob: metres per unscaled unit (BlobParams::scale)
+  double candleDurationS = 20.0;  ///< candle: seconds until it has burnt down (CandleParams::durationS)
+  std::filesystem::path meshPath;  ///< mesh: the triangle mesh turned into a level set; absolute
+};
 
 struct Transform {
   glm::vec3 position{0.0f};     ///< metres; where the shape's anchor goes (see SceneObject)
   glm::vec3 rotationDeg{0.0f};  ///< Euler angles, degrees, applied X then Y then Z
   /// Metres. Mesh: the largest extent of the mesh's bounding box after scaling. Sphere: radius.
-  /// Box: edge length (multiplies `size`). Plane: multiplies `size`.
+  /// Box: edge length (multiplies `size`). Plane: multiplies `size`. Field: mesh fields only, the
+  /// mesh's largest extent (blob and candle keep their own size).
   float scale = 1.0f;
 };
 
@@ -25,6 +36,7 @@ struct SceneObject {
   std::string name;
   ShapeKind shape = ShapeKind::Mesh;
   std::filesystem::path meshPath;  ///< ShapeKind::Mesh only; absolute once loaded
+  FieldDesc field;                 ///< ShapeKind::Field only
   glm::vec3 size{1.0f};            ///< Plane: (x extent, unused, z extent); Box: edge lengths
   Transform transform;
   /// Translucent objects carry a measured material; until a subsurface method exists for them

@@ -19,6 +19,7 @@ std::string shapeKey(const SceneObject& o) {
     case ShapeKind::Sphere: return "sphere";
     case ShapeKind::Plane: return "plane";
     case ShapeKind::Box: return "box";
+    case ShapeKind::Field: break;  // one shape per object, keyed by index in the constructor
   }
   return "?";
 }
@@ -31,6 +32,7 @@ geometry::TriangleMesh SceneGeometry::shapeMesh(const SceneObject& object) {
     case ShapeKind::Sphere: return geometry::makeSphere(kSphereRings, kSphereSegments);
     case ShapeKind::Plane: return geometry::makePlane();
     case ShapeKind::Box: return geometry::makeBox();
+    case ShapeKind::Field: break;
   }
   throw std::logic_error("unknown shape");
 }
@@ -54,12 +56,18 @@ glm::mat4 SceneGeometry::modelMatrix(const SceneObject& o, const geometry::Aabb&
     case ShapeKind::Sphere: shape = glm::scale(glm::mat4(1.0f), glm::vec3(t.scale)); break;
     case ShapeKind::Plane: shape = glm::scale(glm::mat4(1.0f), glm::vec3(o.size.x, 1.0f, o.size.z) * t.scale); break;
     case ShapeKind::Box: shape = glm::scale(glm::mat4(1.0f), o.size * t.scale); break;
+    case ShapeKind::Field: break;  // already in world units (see the header)
   }
   return glm::translate(glm::mat4(1.0f), t.position) * rotation * shape;
 }
 
 SceneGeometry::SceneGeometry(const Scene& scene) {
-  for (const SceneObject& o : scene.objects) {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    if (o.shape == ShapeKind::Field) {
+      objectShapes_.push_back(&shapes_.emplace("field:" + std::to_string(i), Shape{}).first->second);
+      continue;
+    }
     const std::string key = shapeKey(o);
     auto it = shapes_.find(key);
     if (it == shapes_.end()) {
@@ -87,10 +95,12 @@ void SceneGeometry::update(const Scene& scene) {
     DrawItem item;
     item.objectIndex = static_cast<int>(i);
     item.mesh = shape.gpu.get();
+    item.field = shape.field;
     item.model = modelMatrix(o, shape.localBounds);
     item.normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
     item.albedo = o.albedo;
     items_.push_back(item);
+    if (shape.localBounds.empty()) continue;  // a field not attached yet
     for (int c = 0; c < 8; ++c) {
       const glm::vec3 corner((c & 1) ? shape.localBounds.max.x : shape.localBounds.min.x,
                              (c & 2) ? shape.localBounds.max.y : shape.localBounds.min.y,
@@ -102,16 +112,30 @@ void SceneGeometry::update(const Scene& scene) {
   }
 }
 
+void SceneGeometry::attachField(int objectIndex, const geometry::GpuDualContouring* field,
+                                const geometry::Aabb& localBounds) {
+  Shape& shape = *objectShapes_.at(static_cast<std::size_t>(objectIndex));
+  shape.field = field;
+  shape.localBounds = localBounds;
+}
+
 std::size_t SceneGeometry::triangleCount() const {
   std::size_t n = 0;
-  for (const DrawItem& item : items_) n += item.mesh->triangleCount();
+  for (const DrawItem& item : items_)
+    if (item.mesh) n += item.mesh->triangleCount();
   return n;
 }
 
 std::size_t SceneGeometry::bytes() const {
   std::size_t n = 0;
-  for (const auto& [key, shape] : shapes_) n += shape.gpu->bytes();
+  for (const auto& [key, shape] : shapes_)
+    if (shape.gpu) n += shape.gpu->bytes();
   return n;
+}
+
+void DrawItem::draw() const {
+  if (mesh) mesh->draw();
+  if (field) field->draw();
 }
 
 }  // namespace tallow::sss

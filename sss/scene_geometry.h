@@ -5,7 +5,10 @@
 //            and placed with its bounding-box bottom centre at `position`;
 //   sphere — radius `scale`, centred at `position`;
 //   plane  — `size.x × size.z` times `scale`, normal +y (before rotation), centred at `position`;
-//   box    — `size` times `scale`, centred at `position`.
+//   box    — `size` times `scale`, centred at `position`;
+//   field  — isosurfaced in the field's own world units (blob centred on the origin, candle base
+//            at y = 0, mesh field: bottom centre at the origin), rotated, then moved by `position`.
+//            Its triangles come from the renderer's GpuDualContouring (attachField).
 #include <glm/glm.hpp>
 
 #include <map>
@@ -13,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/gpu_dual_contouring.h"
 #include "geometry/triangle_mesh.h"
 #include "sss/gpu_mesh.h"
 #include "sss/scene.h"
@@ -25,11 +29,15 @@ struct DrawItem {
   glm::mat4 model{1.0f};
   glm::mat3 normalMatrix{1.0f};
   glm::vec3 albedo{0.8f};
+  const geometry::GpuDualContouring* field = nullptr;  ///< field objects: drawn from here instead of `mesh`
+
+  /// Draws the item's triangles with the caller's program bound (attribute 0 position, 1 normal).
+  void draw() const;
 };
 
 class SceneGeometry {
  public:
-  /// Loads every mesh file of `scene` (throws std::runtime_error naming the file when one is
+  /// Loads every mesh file of `scene` (field objects get no shape until attachField) (throws std::runtime_error naming the file when one is
   /// missing or broken) and uploads every shape.
   explicit SceneGeometry(const Scene& scene);
   /// Recomputes transforms and albedos after parameters changed (meshes are not reloaded).
@@ -40,6 +48,10 @@ class SceneGeometry {
   /// Bounds of the shapes that shadow maps are fitted to: every shape but planes (ground planes
   /// are large receivers with nothing beneath them to shadow); all shapes when only planes exist.
   geometry::Aabb casterBounds() const { return casterBounds_.empty() ? bounds_ : casterBounds_; }
+  /// Field object `objectIndex` is drawn from `field`; `localBounds` (field units, before the
+  /// object's transform) must contain its surface at every time. Call update() afterwards.
+  void attachField(int objectIndex, const geometry::GpuDualContouring* field, const geometry::Aabb& localBounds);
+  /// Triangles of the meshes and primitives; field triangles are counted by the renderer.
   std::size_t triangleCount() const;
   std::size_t bytes() const;
 
@@ -52,9 +64,10 @@ class SceneGeometry {
   struct Shape {
     std::unique_ptr<GpuMesh> gpu;
     geometry::Aabb localBounds;
+    const geometry::GpuDualContouring* field = nullptr;
   };
   std::map<std::string, Shape> shapes_;  ///< by mesh path or primitive name
-  std::vector<const Shape*> objectShapes_;
+  std::vector<Shape*> objectShapes_;
   std::vector<DrawItem> items_;
   geometry::Aabb bounds_, casterBounds_;
 };

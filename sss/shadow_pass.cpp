@@ -26,7 +26,7 @@ void drawDepth(gpu::Program& program, const SceneGeometry& geometry, const glm::
   program.set("uLightViewProjection", viewProjection);
   for (const DrawItem& item : geometry.items()) {
     program.set("uModel", item.model);
-    item.mesh->draw();
+    item.draw();
   }
 }
 

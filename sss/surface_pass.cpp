@@ -78,7 +78,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uModel", item.model);
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
-    item.mesh->draw();
+    item.draw();
   }
   glDisable(GL_DEPTH_TEST);
   glBindVertexArray(0);

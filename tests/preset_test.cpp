@@ -294,7 +294,12 @@ TEST(Preset, GeometricConstraints) {
 TEST(Preset, ObjectsNeedExactlyOneOfMeshAndShape) {
   EXPECT_EQ(errorOf(withObject(R"({"mesh": "a.ply", "shape": "box"})")),
             "p.json:4:23: an object has \"mesh\" or \"shape\", not both");
-  EXPECT_EQ(errorOf(withObject(R"({"albedo": [1, 1, 1]})")), "p.json:4:5: an object needs \"mesh\" (a file) or \"shape\"");
+  EXPECT_EQ(errorOf(withObject(R"({"albedo": [1, 1, 1]})")),
+            "p.json:4:5: an object needs \"mesh\" (a file), \"shape\" or \"field\"");
+  EXPECT_EQ(errorOf(withObject(R"({"mesh": "a.ply", "field": {"type": "blob"}})")),
+            "p.json:4:23: an object has \"field\", \"mesh\" or \"shape\", only one of them");
+  EXPECT_EQ(errorOf(withObject(R"({"field": {"type": "cube"}})")),
+            "p.json:4:24: type: unknown value \"cube\"; choices: blob, candle, mesh");
   EXPECT_EQ(errorOf(withObject(R"({"shape": "cone"})")),
             "p.json:4:15: shape: unknown value \"cone\"; choices: plane, sphere, box");
   EXPECT_EQ(errorOf(withObject(R"({"mesh": ""})")), "p.json:4:14: mesh: empty file name");

@@ -56,7 +56,7 @@ class RegistryTest : public ::testing::Test {
 TEST_F(RegistryTest, DeclaresTheContractKeysOnceWithHelp) {
   const std::set<std::string> expected = {
       "render.width",    "render.height",   "render.shadows",  "render.shadow_map_size", "render.shadow_bias",
-      "render.pcf_radius", "render.tonemap", "render.exposure_ev", "scale", "material", "light.intensity",
+      "render.pcf_radius", "render.tonemap", "render.exposure_ev", "field.res", "scale", "material", "light.intensity",
       "light.direction", "light.position",  "camera.position", "camera.target", "camera.fov_deg", "ambient"};
   std::set<std::string> keys;
   for (const Registry::Param& p : registry.params()) {

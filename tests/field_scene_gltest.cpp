@@ -1,0 +1,232 @@
+// Field objects in scenes (issue 4, points 2, 3, 6): the blob and candle presets render headless,
+// animate, repeat after the blob's period, isosurface only when t changes, and "field" errors in a
+// preset are located at file:line:col.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "app/input_error.h"
+#include "app/preset.h"
+#include "app/setup.h"
+#include "geometry/blob_field.h"
+#include "geometry/candle_field.h"
+#include "gpu/gl_context.h"
+#include "sss/renderer.h"
+
+namespace tallow {
+namespace {
+
+constexpr int kWidth = 96, kHeight = 64;
+
+bool hasPass(const std::vector<sss::PlannedPass>& plan, const std::string& name) {
+  return std::any_of(plan.begin(), plan.end(), [&](const sss::PlannedPass& p) { return p.name == name; });
+}
+bool hasTiming(const sss::FrameTimings& t, const std::string& name) {
+  return std::any_of(t.passes.begin(), t.passes.end(), [&](const gpu::PassTiming& p) { return p.name == name; });
+}
+
+/// One preset loaded at a small size with a coarse lattice, its context and renderer.
+class FieldScene {
+ public:
+  explicit FieldScene(const std::string& preset, int res = 32) {
+    app::SceneOptions options;
+    options.preset = preset;
+    options.sets = {"render.width=" + std::to_string(kWidth), "render.height=" + std::to_string(kHeight),
+                    "field.res=" + std::to_string(res)};
+    loaded_ = app::loadScene(options);
+    gpu::ContextOptions contextOptions;
+    contextOptions.visible = false;
+    context_ = gpu::GlContext::create(contextOptions);
+    renderer_ = std::make_unique<sss::Renderer>(shaders_, scene(), settings());
+  }
+  const sss::Scene& scene() const { return loaded_.config.scene; }
+  const sss::RenderSettings& settings() const { return loaded_.config.render; }
+  sss::Renderer& renderer() { return *renderer_; }
+  gpu::Image render(double t, sss::FrameTimings* timings = nullptr) {
+    const sss::FrameTimings ft = renderer_->render(scene(), settings(), t);
+    if (timings) *timings = ft;
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    return renderer_->readRadiance();
+  }
+
+ private:
+  app::LoadedScene loaded_;
+  std::unique_ptr<gpu::GlContext> context_;
+  gpu::ShaderLibrary shaders_;
+  std::unique_ptr<sss::Renderer> renderer_;
+};
+
+void expectFinite(const gpu::Image& image) {
+  ASSERT_EQ(image.width, kWidth);
+  ASSERT_EQ(image.height, kHeight);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(image.at(x, y)[c])) << x << ", " << y;
+}
+
+/// Pixels in the box [x0, x1) × [y0, y1) whose radiance differs by more than one 8-bit level.
+int differingPixels(const gpu::Image& a, const gpu::Image& b, int x0, int y0, int x1, int y1) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const glm::vec4 d = glm::abs(a.at(x, y) - b.at(x, y));
+      n += std::max(d.r, std::max(d.g, d.b)) > 1.0f / 255.0f ? 1 : 0;
+    }
+  return n;
+}
+
+TEST(FieldSceneGL, BlobPresetRendersFiniteAndCountsExtractedTriangles) {
+  FieldScene s("blob");
+  const std::size_t before = s.renderer().triangleCount();  // meshes only: nothing extracted yet
+  const gpu::Image image = s.render(0.0);
+  expectFinite(image);
+  const std::size_t after = s.renderer().triangleCount();
+  std::printf("[ field ] blob at 32^3: %zu extracted triangles\n", after - before);
+  EXPECT_GT(after, before + 100);
+}
+
+TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
+  FieldScene s("candle");
+  const gpu::Image image = s.render(0.0);
+  expectFinite(image);
+  EXPECT_GT(s.renderer().triangleCount(), 100u);
+  // The point light of the preset is the flame of the candle at t = 0.
+  const sss::Scene& scene = s.scene();
+  const auto light = std::find_if(scene.lights.begin(), scene.lights.end(),
+                                  [](const sss::Light& l) { return l.kind == sss::LightKind::Point; });
+  ASSERT_NE(light, scene.lights.end());
+  geometry::CandleParams params;
+  params.durationS = scene.objects[0].field.candleDurationS;
+  const glm::dvec3 flame = geometry::CandleField(0.0, params).flamePosition();
+  std::printf("[ field ] candle flame at t = 0: (%.5f, %.5f, %.5f)\n", flame.x, flame.y, flame.z);
+  EXPECT_LT(glm::length(glm::dvec3(light->position) - flame), 1e-3);
+  // The candle changes as it burns: frames at the start and the end differ.
+  const gpu::Image late = s.render(scene.objects[0].field.candleDurationS);
+  expectFinite(late);
+  EXPECT_GT(differingPixels(image, late, 0, 0, kWidth, kHeight), 20);
+}
+
+TEST(FieldSceneGL, BlobAnimatesAndRepeatsAfterItsPeriod) {
+  FieldScene s("blob");
+  // The whole blob repeats after the least common multiple of its paths' periods.
+  const geometry::BlobParams params;
+  double period = 1.0;
+  for (double p : params.period) period = std::lcm(static_cast<long long>(period), static_cast<long long>(p));
+  ASSERT_EQ(period, 5005.0);
+  // The blob sits at the camera target, the centre of the image; at t = 0 its four blobs form one
+  // ball there, at t = 2 s they have moved apart by about the ball's radius, so the centre half of
+  // the image (the blob spans about a third of the view height) changes.
+  const int x0 = kWidth / 4, x1 = 3 * kWidth / 4, y0 = kHeight / 4, y1 = 3 * kHeight / 4;
+  const gpu::Image a = s.render(1.0);
+  const gpu::Image b = s.render(3.0);
+  const gpu::Image c = s.render(1.0 + period);
+  const int moved = differingPixels(a, b, x0, y0, x1, y1);
+  const int repeated = differingPixels(a, c, 0, 0, kWidth, kHeight);
+  std::printf("[ field ] blob: %d pixels differ between t = 1 and 3 s, %d between t = 1 and 1 + %g s\n", moved,
+              repeated, period);
+  EXPECT_GT(moved, 50);
+  EXPECT_EQ(repeated, 0);
+}
+
+TEST(FieldSceneGL, FieldPassesRunOnlyWhenTheTimeOrResolutionChanges) {
+  FieldScene s("blob");
+  EXPECT_TRUE(hasPass(sss::Renderer::plan(s.scene(), s.settings()), "field.extract"));
+  EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.sample"));
+  EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.extract"));
+  sss::FrameTimings first, second, third;
+  const gpu::Image a = s.render(0.5, &first);
+  EXPECT_TRUE(hasTiming(first, "field.sample"));
+  EXPECT_TRUE(hasTiming(first, "field.extract"));
+  EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.extract"));
+  EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.sample"));
+  const gpu::Image b = s.render(0.5, &second);
+  EXPECT_FALSE(hasTiming(second, "field.extract"));
+  EXPECT_TRUE(hasTiming(second, "surface"));
+  EXPECT_EQ(differingPixels(a, b, 0, 0, kWidth, kHeight), 0) << "the cached extraction is drawn again";
+  EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.75), "field.extract"));
+  sss::RenderSettings finer = s.settings();
+  finer.fieldRes = 48;
+  EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), finer, 0.5), "field.extract"));
+  s.renderer().render(s.scene(), finer, 0.5);
+  EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), finer, 0.5), "field.extract"));
+}
+
+TEST(FieldSceneGL, MeshFieldRendersTheBunnyThroughTheLevelSetPath) {
+  const std::string path = ::testing::TempDir() + "tallow_bunny_field.json";
+  {
+    std::ofstream out(path);
+    out << R"({"camera": {"position": [0, 0.06, 0.3], "target": [0, 0.05, 0]},
+  "lights": [{"type": "directional", "direction": [0, 1, 1], "irradiance": [3, 3, 3]}],
+  "objects": [{"field": {"type": "mesh", "mesh": "data:bunny.ply"}, "scale": 0.1}]})";
+  }
+  FieldScene s(path);
+  EXPECT_EQ(s.scene().objects[0].shape, sss::ShapeKind::Field);
+  const gpu::Image image = s.render(0.0);
+  expectFinite(image);
+  EXPECT_GT(s.renderer().triangleCount(), 100u);
+  int lit = 0;  // the bunny (about a third of the view) against a black background
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) lit += image.at(x, y).g > 0.05f ? 1 : 0;
+  EXPECT_GT(lit, 200);
+  // A mesh field does not depend on time: no new extraction at another t.
+  EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 1.0), "field.extract"));
+}
+
+TEST(FieldSceneGL, StaticScenesPlanNoFieldPasses) {
+  app::SceneOptions options;
+  options.preset = "bunny";
+  const app::LoadedScene loaded = app::loadScene(options);
+  const auto plan = sss::Renderer::plan(loaded.config.scene, loaded.config.render);
+  EXPECT_FALSE(hasPass(plan, "field.sample"));
+  EXPECT_FALSE(hasPass(plan, "field.extract"));
+}
+
+// --- Preset errors --------------------------------------------------------------------------------
+
+std::string presetError(const std::string& object) {
+  const std::string text = "{\n  \"camera\": {\"position\": [0, 0, 1], \"target\": [0, 0, 0]},\n  \"objects\": [\n    " +
+                           object + "\n  ]\n}\n";
+  const sss::MaterialTable materials = sss::MaterialTable::parse(
+      "name,source,sigma_s_r,sigma_s_g,sigma_s_b,sigma_a_r,sigma_a_g,sigma_a_b,g_r,g_g,g_b,eta,unit\n"
+      "Marble,Jensen et al. 2001,2.19,2.62,3,0.0021,0.0041,0.0071,0,0,0,1.5,mm^-1\n",
+      "inline.csv");
+  try {
+    app::parsePreset(text, "p.json", "/presets", materials, "/data");
+  } catch (const app::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FieldPreset, ReadsEachFieldType) {
+  EXPECT_EQ(presetError(R"({"field": {"type": "blob", "scale": 0.05}})"), "");
+  EXPECT_EQ(presetError(R"({"field": {"type": "candle", "duration_s": 30}})"), "");
+  EXPECT_EQ(presetError(R"({"field": {"type": "mesh", "mesh": "data:bunny.ply"}, "scale": 0.1})"), "");
+}
+
+TEST(FieldPreset, ErrorsNameFileLineColumn) {
+  EXPECT_EQ(presetError(R"({"field": {"type": "blob"}, "mesh": "data:bunny.ply"})"),
+            "p.json:4:6: an object has \"field\", \"mesh\" or \"shape\", only one of them");
+  EXPECT_EQ(presetError(R"({"shape": "sphere", "field": {"type": "blob"}})"),
+            "p.json:4:25: an object has \"field\", \"mesh\" or \"shape\", only one of them");
+  EXPECT_EQ(presetError(R"({"field": {"type": "blub"}})"),
+            "p.json:4:24: type: unknown value \"blub\" (did you mean \"blob\"?); choices: blob, candle, mesh");
+  EXPECT_EQ(presetError(R"({"field": {"type": "candle", "scale": 2}})"),
+            "p.json:4:34: unknown key \"scale\"");
+  EXPECT_EQ(presetError(R"({"field": {"type": "blob"}, "scale": 2})"),
+            "p.json:4:33: \"scale\" applies to mesh fields; a blob is sized by its field's \"scale\", a candle is "
+            "fixed");
+  EXPECT_EQ(presetError(R"({"field": {"type": "mesh"}})"), "p.json:4:15: missing \"mesh\"");
+  const std::string dragon = presetError(R"({"field": {"type": "mesh", "mesh": "data:dragon.ply"}})");
+  EXPECT_EQ(dragon.rfind("p.json:4:40: mesh: dragon.ply cannot be a field: Stanford's terms", 0), 0u) << dragon;
+  EXPECT_NE(dragon.find("MODELS.md"), std::string::npos);
+  EXPECT_EQ(presetError(R"({"field": 3})"), "p.json:4:15: field: expected an object with a \"type\"");
+}
+
+}  // namespace
+}  // namespace tallow
