@@ -6,6 +6,7 @@
 
 #include "app/capture_command.h"
 #include "app/cost_command.h"
+#include "app/extraction_bench_command.h"
 #include "app/input_error.h"
 #include "app/params.h"
 #include "app/probe_command.h"
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
 
-  auto* probeCmd = app.add_subcommand("probe", "evaluate the BSSRDF models outside a scene");
+  auto* probeCmd = app.add_subcommand("probe", "evaluate parts of the method outside a scene (BSSRDF, extraction)");
   probeCmd->require_subcommand(1);
   tallow::app::ProbeBssrdfOptions probeBssrdf;
   auto* probeBssrdfCmd = probeCmd->add_subcommand("bssrdf", "evaluate S_d for each configuration of a CSV file");
@@ -102,6 +103,14 @@ int main(int argc, char** argv) {
   costCmd->add_option("--gl", cost.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
   costCmd->add_option("--out", cost.out, "JSON file")->required();
 
+  tallow::app::ProbeExtractionOptions extraction;
+  auto* extractionCmd = probeCmd->add_subcommand("extraction", "isosurface extraction benchmark: GPU surface nets vs OpenVDB");
+  extractionCmd->add_option("--fields", extraction.fields, "fields: blob,candle")->delimiter(',');
+  extractionCmd->add_option("--res", extraction.resolutions, "samples per axis, each in [16, 256]")->delimiter(',');
+  extractionCmd->add_option("--repeats", extraction.repeats, "timed repeats after one warm-up; the median is reported");
+  extractionCmd->add_option("--gl", extraction.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+  extractionCmd->add_option("--out", extraction.out, "JSON file")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -119,6 +128,7 @@ int main(int argc, char** argv) {
     if (*probeBssrdfCmd) return tallow::app::runProbeBssrdf(probeBssrdf);
     if (*profileCmd) return tallow::app::runProbeProfile(profile);
     if (*costCmd) return tallow::app::runProbeCost(cost);
+    if (*extractionCmd) return tallow::app::runProbeExtraction(extraction);
     return tallow::app::runView(view);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tallow: %s\n", e.what());
