@@ -1,5 +1,7 @@
 #include "geometry/mesh_level_set_field.h"
 
+#include "geometry/openvdb_bounds.h"
+
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -102,21 +104,9 @@ double MeshLevelSetField::value(glm::dvec3 p) const {
 }
 
 glm::dvec3 MeshLevelSetField::gradient(glm::dvec3 p) const {
-  const double h = 0.5 * voxelSize_;
-  return glm::dvec3(value(p + glm::dvec3(h, 0, 0)) - value(p - glm::dvec3(h, 0, 0)),
-                    value(p + glm::dvec3(0, h, 0)) - value(p - glm::dvec3(0, h, 0)),
-                    value(p + glm::dvec3(0, 0, h)) - value(p - glm::dvec3(0, 0, h))) /
-         (2.0 * h);
+  return centralDifferenceGradient(p, 0.5 * voxelSize_);
 }
 
-Aabb MeshLevelSetField::bounds() const {
-  const openvdb::FloatGrid& grid = *grid_->grid;
-  const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
-  const openvdb::Vec3d lo = grid.indexToWorld(box.min().asVec3d()), hi = grid.indexToWorld(box.max().asVec3d());
-  Aabb out;
-  out.extend(glm::vec3(static_cast<float>(lo.x()), static_cast<float>(lo.y()), static_cast<float>(lo.z())));
-  out.extend(glm::vec3(static_cast<float>(hi.x()), static_cast<float>(hi.y()), static_cast<float>(hi.z())));
-  return out;
-}
+Aabb MeshLevelSetField::bounds() const { return activeVoxelBounds(*grid_->grid); }
 
 }  // namespace tallow::geometry

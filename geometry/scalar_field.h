@@ -17,6 +17,8 @@ class ScalarField {
   /// ∇value at p, pointing outward on the surface. Default: central differences with a step of
   /// kGradientStepRelative × the largest extent of bounds(); override with an analytic one.
   virtual glm::dvec3 gradient(glm::dvec3 p) const;
+  /// Central differences of value() with step h (for sampled fields: half a voxel).
+  glm::dvec3 centralDifferenceGradient(glm::dvec3 p, double h) const;
   /// World-space box that contains the whole surface (value ≥ 0 everywhere outside it).
   virtual Aabb bounds() const = 0;
 
