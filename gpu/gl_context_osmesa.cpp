@@ -1,5 +1,5 @@
 // OSMesa: Mesa's off-screen context (llvmpipe). Tallow always renders into its own framebuffer
-// objects, so the OSMesa buffer is a 1×1 placeholder that only satisfies MakeCurrent.
+// objects, so the OSMesa buffer is a 1×1 dummy that only satisfies MakeCurrent.
 #include <glad/gl.h>
 // glad defines __gl_h_, so osmesa.h's own #include <GL/gl.h> is skipped.
 #include <GL/osmesa.h>

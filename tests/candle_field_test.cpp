@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/mesh_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,42 +24,14 @@
 namespace tallow::geometry {
 namespace {
 
-double signedVolume(const TriangleMesh& mesh) {  // divergence theorem: Σ a·(b×c) / 6
-  double v = 0.0;
-  for (const auto& t : mesh.triangles)
-    v += glm::dot(glm::dvec3(mesh.positions[t[0]]),
-                  glm::cross(glm::dvec3(mesh.positions[t[1]]), glm::dvec3(mesh.positions[t[2]])));
-  return v / 6.0;
-}
+using test::badEdges;
+using test::countComponents;
+using test::edgeUses;
+using test::faceCross;
+using test::signedVolume;
 
-/// Number of undirected edges not used by exactly two triangles (0 for a watertight mesh).
-int badEdges(const TriangleMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const auto& t : mesh.triangles)
-    for (std::size_t i = 0; i < 3; ++i) ++uses[std::minmax(t[i], t[(i + 1) % 3])];
-  int bad = 0;
-  for (const auto& [edge, n] : uses) bad += n == 2 ? 0 : 1;
-  return bad;
-}
 
-/// Connected components of the triangles (sharing a vertex joins them), by union-find.
-int countComponents(const TriangleMesh& mesh) {
-  std::vector<std::uint32_t> parent(mesh.positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<bool> used(mesh.positions.size(), false);
-  for (const auto& t : mesh.triangles) {
-    for (std::uint32_t v : t) used[v] = true;
-    parent[find(t[1])] = find(t[0]);
-    parent[find(t[2])] = find(t[0]);
-  }
-  int count = 0;
-  for (std::uint32_t v = 0; v < parent.size(); ++v) count += (used[v] && find(v) == v) ? 1 : 0;
-  return count;
-}
+
 
 /// Largest first-order distance |value| / |∇value| from the zero set over the mesh's vertices
 /// for which skip(p) is false.

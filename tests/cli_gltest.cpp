@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <fstream>
 
@@ -208,7 +210,11 @@ namespace {
 TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
   test::TempDir dir;
-  const std::string command = "cd " + dir.path().string() + " && xvfb-run -a -s '-screen 0 800x600x24' " +
+  // xvfb-run -a starts its search at display 99, which races with any other xvfb-run starting at the
+  // same moment on this machine; start from a number of our own instead.
+  const std::string display = std::to_string(100 + ::getpid() % 800);
+  const std::string command = "cd " + dir.path().string() + " && xvfb-run -a -n " + display +
+                              " -s '-screen 0 800x600x24' " +
                               std::string(TALLOW_TEST_BINARY) + " view --frames 3 --size 320x180 2>err.txt";
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream err(dir.path() / "err.txt");

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/mesh_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +24,12 @@
 
 namespace tallow::geometry {
 namespace {
+
+using test::badEdges;
+using test::countComponents;
+using test::edgeUses;
+using test::faceCross;
+using test::signedVolume;
 
 /// value = ‖p − centre‖ − r: a true signed distance, so |value| is the distance to the surface.
 class SphereField final : public ScalarField {
@@ -41,18 +49,7 @@ class SphereField final : public ScalarField {
   double radius_;
 };
 
-double signedVolume(const TriangleMesh& mesh) {  // divergence theorem: Σ a·(b×c) / 6
-  double v = 0.0;
-  for (const auto& t : mesh.triangles)
-    v += glm::dot(glm::dvec3(mesh.positions[t[0]]),
-                  glm::cross(glm::dvec3(mesh.positions[t[1]]), glm::dvec3(mesh.positions[t[2]])));
-  return v / 6.0;
-}
 
-glm::dvec3 faceCross(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
-  const glm::dvec3 a(mesh.positions[t[0]]), b(mesh.positions[t[1]]), c(mesh.positions[t[2]]);
-  return glm::cross(b - a, c - a);  // length = 2 × area
-}
 
 struct Quality {
   std::size_t triangles = 0, badEdges = 0, degenerate = 0, farVertices = 0, flipped = 0;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/mesh_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -15,6 +17,12 @@
 
 namespace tallow::geometry {
 namespace {
+
+using test::badEdges;
+using test::countComponents;
+using test::edgeUses;
+using test::faceCross;
+using test::signedVolume;
 
 /// value = ‖p − centre‖ − r: the exact case (a true signed distance).
 class SphereField final : public ScalarField {
@@ -37,45 +45,9 @@ Aabb cube(glm::dvec3 centre, double half) {
   return box;
 }
 
-double signedVolume(const TriangleMesh& mesh) {  // divergence theorem: Σ a·(b×c) / 6
-  double v = 0.0;
-  for (const auto& t : mesh.triangles)
-    v += glm::dot(glm::dvec3(mesh.positions[t[0]]),
-                  glm::cross(glm::dvec3(mesh.positions[t[1]]), glm::dvec3(mesh.positions[t[2]])));
-  return v / 6.0;
-}
 
-glm::dvec3 faceCross(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
-  const glm::dvec3 a(mesh.positions[t[0]]), b(mesh.positions[t[1]]), c(mesh.positions[t[2]]);
-  return glm::cross(b - a, c - a);  // length = 2 × area
-}
 
-/// How many triangles use each undirected edge.
-std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUses(const TriangleMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const auto& t : mesh.triangles)
-    for (int i = 0; i < 3; ++i) ++uses[std::minmax(t[static_cast<std::size_t>(i)], t[static_cast<std::size_t>((i + 1) % 3)])];
-  return uses;
-}
 
-/// Connected components of the triangles (sharing a vertex joins them), by union-find.
-int countComponents(const TriangleMesh& mesh) {
-  std::vector<std::uint32_t> parent(mesh.positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<bool> used(mesh.positions.size(), false);
-  for (const auto& t : mesh.triangles) {
-    for (std::uint32_t v : t) used[v] = true;
-    parent[find(t[1])] = find(t[0]);
-    parent[find(t[2])] = find(t[0]);
-  }
-  int count = 0;
-  for (std::uint32_t v = 0; v < parent.size(); ++v) count += (used[v] && find(v) == v) ? 1 : 0;
-  return count;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Blob field
