@@ -214,9 +214,10 @@ TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
   // choice races with other X servers starting at the same moment on a busy machine.
   const std::string n = std::to_string(100 + ::getpid() % 800);
   const std::string script =
-      "cd " + dir.path().string() + " && Xvfb :" + n + " -screen 0 800x600x24 -nolisten tcp >xvfb.log 2>&1 & pid=$!; "
-      "for i in $(seq 200); do [ -e /tmp/.X11-unix/X" + n + " ] && break; sleep 0.05; done; "
-      "DISPLAY=:" + n + " " + std::string(TALLOW_TEST_BINARY) + " view --frames 3 --size 320x180 >err.txt 2>&1; "
+      "cd " + dir.path().string() + " || exit 1; n=" + n + "; while [ -e /tmp/.X$n-lock ]; do n=$((n + 1)); done; "
+      "Xvfb :$n -screen 0 800x600x24 -nolisten tcp >xvfb.log 2>&1 & pid=$!; "
+      "for i in $(seq 200); do [ -e /tmp/.X11-unix/X$n ] && break; sleep 0.05; done; "
+      "DISPLAY=:$n " + std::string(TALLOW_TEST_BINARY) + " view --frames 3 --size 320x180 >err.txt 2>&1; "
       "rc=$?; kill $pid; wait $pid 2>/dev/null; exit $rc";
   const std::string command = "bash -c '" + script + "'";
   const int status = std::system(command.c_str());
