@@ -30,24 +30,8 @@ using test::countComponents;
 using test::edgeUses;
 using test::faceCross;
 using test::signedVolume;
+using test::SphereField;
 
-/// value = ‖p − centre‖ − r: a true signed distance, so |value| is the distance to the surface.
-class SphereField final : public ScalarField {
- public:
-  SphereField(glm::dvec3 centre, double radius) : centre_(centre), radius_(radius) {}
-  double value(glm::dvec3 p) const override { return glm::length(p - centre_) - radius_; }
-  glm::dvec3 gradient(glm::dvec3 p) const override { return glm::normalize(p - centre_); }
-  Aabb bounds() const override {
-    Aabb box;  // 20% margin around the sphere
-    box.extend(glm::vec3(centre_ - 1.2 * radius_));
-    box.extend(glm::vec3(centre_ + 1.2 * radius_));
-    return box;
-  }
-
- private:
-  glm::dvec3 centre_;
-  double radius_;
-};
 
 
 

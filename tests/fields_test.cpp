@@ -23,20 +23,8 @@ using test::countComponents;
 using test::edgeUses;
 using test::faceCross;
 using test::signedVolume;
+using test::SphereField;
 
-/// value = ‖p − centre‖ − r: the exact case (a true signed distance).
-class SphereField final : public ScalarField {
- public:
-  SphereField(glm::dvec3 centre, double radius, Aabb box) : centre_(centre), radius_(radius), box_(box) {}
-  double value(glm::dvec3 p) const override { return glm::length(p - centre_) - radius_; }
-  glm::dvec3 gradient(glm::dvec3 p) const override { return glm::normalize(p - centre_); }
-  Aabb bounds() const override { return box_; }
-
- private:
-  glm::dvec3 centre_;
-  double radius_;
-  Aabb box_;
-};
 
 Aabb cube(glm::dvec3 centre, double half) {
   Aabb box;

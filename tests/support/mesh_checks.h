@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/scalar_field.h"
 #include "geometry/triangle_mesh.h"
 
 namespace tallow::test {
@@ -63,5 +64,27 @@ inline int countComponents(const geometry::TriangleMesh& mesh) {
   for (std::uint32_t v = 0; v < parent.size(); ++v) count += (used[v] && find(v) == v) ? 1 : 0;
   return count;
 }
+
+/// value = ‖p − centre‖ − r: the exact case, a true signed distance, so |value| is the distance to
+/// the surface. Bounds: the given box, or a 20% margin around the sphere.
+class SphereField final : public geometry::ScalarField {
+ public:
+  SphereField(glm::dvec3 centre, double radius) : SphereField(centre, radius, margin(centre, radius)) {}
+  SphereField(glm::dvec3 centre, double radius, geometry::Aabb box) : centre_(centre), radius_(radius), box_(box) {}
+  double value(glm::dvec3 p) const override { return glm::length(p - centre_) - radius_; }
+  glm::dvec3 gradient(glm::dvec3 p) const override { return glm::normalize(p - centre_); }
+  geometry::Aabb bounds() const override { return box_; }
+
+ private:
+  static geometry::Aabb margin(glm::dvec3 centre, double radius) {
+    geometry::Aabb box;
+    box.extend(glm::vec3(centre - 1.2 * radius));
+    box.extend(glm::vec3(centre + 1.2 * radius));
+    return box;
+  }
+  glm::dvec3 centre_;
+  double radius_;
+  geometry::Aabb box_;
+};
 
 }  // namespace tallow::test
