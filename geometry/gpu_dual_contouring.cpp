@@ -5,15 +5,14 @@
 #include <map>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <vector>
 
 namespace tallow::geometry {
 namespace {
 
 constexpr GLuint kWorkGroup = 64;                        ///< local_size_x of both compute passes
-constexpr int kVertexStride = 7 * sizeof(float);         ///< position, normal, cell (int bits)
-constexpr int kMeshStride = 6 * sizeof(float);           ///< position, normal
+constexpr int kVertexStride = 8 * sizeof(float);  ///< position, normal, cell, bits (int bits)
+constexpr int kMeshStride = 7 * sizeof(float);    ///< position, normal, vertex index (int bits)
 constexpr GLuint kPointsPerBlock = GpuDualContouring::kBlockCells * GpuDualContouring::kBlockCells *
                                    GpuDualContouring::kBlockCells;
 
@@ -27,7 +26,7 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   if (n_ < 2) throw std::runtime_error("GpuDualContouring: need at least 2 samples per axis, got " + std::to_string(n_));
   const std::size_t cells = static_cast<std::size_t>(n_ - 1);
   blocks_ = (n_ - 1 + kBlockCells - 1) / kBlockCells;
-  vertexCapacity_ = std::min(cells * cells * cells, kVerticesPerFaceCell * cells * cells);
+  vertexCapacity_ = std::min(kMaxPatchesPerCell * cells * cells * cells, kVerticesPerFaceCell * cells * cells);
   triangleCapacity_ = kTrianglesPerVertex * vertexCapacity_;
   const std::size_t bytes = vertexCapacity_ * kVertexStride + triangleCapacity_ * 3 * kMeshStride;
   if (bytes > kMaxBufferBytes)
@@ -39,11 +38,11 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   classify_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/classify.comp"}}, defines});
   vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
                                       {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
-                                     defines, {"tfPosition", "tfNormal", "tfCell"}});
+                                     defines, {"tfPosition", "tfNormal", "tfCell", "tfBits"}});
   indexMap_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/index_map.comp"}}, defines});
   quads_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
                                    {GL_GEOMETRY_SHADER, "dual_contouring/quads.geom"}},
-                                  defines, {"tfPosition", "tfNormal"}});
+                                  defines, {"tfPosition", "tfNormal", "tfVertex"}});
 
   field_ = gpu::Texture::create3D(GL_R32F, n_, n_, n_);
   field_.setFilter(GL_LINEAR, GL_LINEAR);
@@ -187,16 +186,19 @@ std::size_t GpuDualContouring::bufferBytes() const {
 TriangleMesh GpuDualContouring::readBack() const {
   checkOverflow();
   const std::size_t triangles = triangleCount();
-  std::vector<float> data(triangles * 3 * 6);
+  std::vector<float> data(triangles * 3 * 7);
   if (!data.empty()) meshBuffer_.download(0, data.size() * sizeof(float), data.data());
-  // Weld by exact position: every corner of a quad is copied from the same vertex-buffer entry.
+  // Weld by vertex-buffer index, which every triangle corner carries: exactly the sharing the quads
+  // were built with, even where two patch vertices happen to coincide.
   TriangleMesh mesh;
-  std::map<std::tuple<float, float, float>, std::uint32_t> welded;
+  std::map<std::int32_t, std::uint32_t> welded;
   mesh.triangles.resize(triangles);
   for (std::size_t t = 0; t < triangles; ++t)
     for (std::size_t k = 0; k < 3; ++k) {
-      const float* v = &data[(3 * t + k) * 6];
-      const auto [it, inserted] = welded.try_emplace({v[0], v[1], v[2]}, static_cast<std::uint32_t>(mesh.positions.size()));
+      const float* v = &data[(3 * t + k) * 7];
+      std::int32_t index = 0;
+      std::memcpy(&index, &v[6], sizeof(index));
+      const auto [it, inserted] = welded.try_emplace(index, static_cast<std::uint32_t>(mesh.positions.size()));
       if (inserted) {
         mesh.positions.emplace_back(v[0], v[1], v[2]);
         mesh.normals.emplace_back(v[3], v[4], v[5]);

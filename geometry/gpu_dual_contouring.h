@@ -3,9 +3,12 @@
 // SampledLattice uploaded as a GL_R32F 3D texture. Four passes, all on the GPU:
 //   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
 //      indirect draw command (instances = active blocks);
-//   2. cells.vert + vertices.geom: one vertex per sign-changing cell (mean of edge crossings,
-//      normal from the texture's gradient) captured by transform feedback;
-//   3. index_map.comp: vertex index (emission order) → GL_R32I 3D index map, dispatched indirectly;
+//   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (mean
+//      of the patch's edge crossings; usually one patch, up to four where a face is ambiguous,
+//      see shaders/dual_contouring/patches.glsl), normal from the texture's gradient, captured by
+//      transform feedback;
+//   3. index_map.comp: first vertex of each cell (emission order) → GL_R32I 3D index map,
+//      dispatched indirectly;
 //   4. cells.vert + quads.geom: two triangles per sign-changing edge, outward winding, captured by
 //      transform feedback into the mesh buffer, drawn with glDrawTransformFeedback.
 // Nothing is read back in extract() or draw(); the query-based accessors are for tests and stats.
@@ -23,9 +26,11 @@ namespace tallow::geometry {
 class GpuDualContouring {
  public:
   static constexpr int kBlockCells = 4;  ///< block edge in cells: 64 points per block instance
-  /// Vertex capacity = min(cells, kVerticesPerFaceCell · (n − 1)²): a closed surface inside the
+  /// Vertex capacity = min(kMaxPatchesPerCell · cells, kVerticesPerFaceCell · (n − 1)²): a closed surface inside the
   /// lattice crosses O(n²) cells; 24 is 4× the cube's six faces, room for folded blob shapes.
   static constexpr std::size_t kVerticesPerFaceCell = 24;
+  /// A cell holds at most 4 separate patches of surface (4 corners cut off), one vertex each.
+  static constexpr std::size_t kMaxPatchesPerCell = 4;
   /// Triangles per vertex: a closed quad mesh has ~1 quad (2 triangles) per vertex (Euler); 3 is slack.
   static constexpr std::size_t kTrianglesPerVertex = 3;
   /// Total buffer memory cap; a lattice that would need more throws at construction.
@@ -44,7 +49,7 @@ class GpuDualContouring {
   void draw() const;
 
   // --- Read-back (tests, `tallow mesh`, stats); each waits for the GPU. ---
-  /// The last extraction as an indexed mesh (vertices shared by exact position); throws
+  /// The last extraction as an indexed mesh (vertices shared by vertex-buffer index); throws
   /// std::runtime_error when a buffer overflowed.
   TriangleMesh readBack() const;
   std::size_t triangleCount() const;   ///< GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN of pass 4

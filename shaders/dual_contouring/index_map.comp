@@ -1,9 +1,12 @@
 #version 450 core
-// Pass 3: index map. Vertex i of the transform-feedback buffer (emission order) is stored at its
-// cell, so the quad pass finds the shared vertices. Dispatched indirectly from the vertex counter.
+// Pass 3: index map. The first vertex of each cell in the transform-feedback buffer (emission
+// order) is stored at its cell; the cell's other vertices follow it (vertex_record.glsl), so the
+// quad pass finds vertex = map[cell] + offset. Dispatched indirectly from the vertex counter. A cell whose vertices
+// did not all fit in the buffer (overflow) is left at −1, and its quads are skipped.
 layout(local_size_x = 64) in;
 
-struct DcVertex { float px, py, pz, nx, ny, nz; int cell; };
+#include "dual_contouring/vertex_record.glsl"
+
 layout(std430, binding = 0) readonly buffer Vertices { DcVertex vertices[]; };
 layout(std430, binding = 1) readonly buffer VertexCounter { uint vertexCount; };
 layout(r32i, binding = 0) uniform writeonly iimage3D uIndexMap;
@@ -13,7 +16,10 @@ uniform uint uCapacity;  // vertices the buffer holds; later ones were dropped (
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= min(vertexCount, uCapacity)) return;
+  uint stored = min(vertexCount, uCapacity);
+  if (i >= stored) return;
+  uint bits = vertices[i].bits;
+  if (isFaceVertex(bits) || ownPatch(bits) != 0 || i + uint(vertexTotal(bits)) > stored) return;
   int cell = vertices[i].cell, cells = uSamples - 1;
   imageStore(uIndexMap, ivec3(cell % cells, (cell / cells) % cells, cell / (cells * cells)), ivec4(int(i)));
 }

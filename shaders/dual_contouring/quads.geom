@@ -1,24 +1,31 @@
 #version 450 core
 // Pass 4: for each of the 3 edges leaving the cell's min corner that changes sign, a quad joining
-// the vertices of the 4 cells around it, as two triangles, counter-clockwise seen from outside
-// (value > 0). Captured by transform feedback as a triangle list of (position, normal).
+// the vertices of the edge's patch in the 4 cells around it, counter-clockwise seen from outside
+// (value > 0), as two triangles split along the shorter diagonal. Where two of the cells share a
+// face with face vertices (patches.glsl), the quad's side between them runs through the face vertex
+// of the edge's segment, and the polygon (up to 8 vertices) is triangulated as a fan. Captured by
+// transform feedback as a triangle list of (position, normal, vertex index).
 #include "dual_contouring/lattice.glsl"
+#include "dual_contouring/patches.glsl"
 
 layout(points) in;
-layout(triangle_strip, max_vertices = 18) out;
+layout(triangle_strip, max_vertices = 54) out;  // 3 edges × 6 triangles
 
 flat in ivec3 vCell[];
 out vec3 tfPosition;
 out vec3 tfNormal;
+flat out int tfVertex;
 
-struct DcVertex { float px, py, pz, nx, ny, nz; int cell; };
 layout(std430, binding = 2) readonly buffer Vertices { DcVertex vertices[]; };
 layout(r32i, binding = 0) uniform readonly iimage3D uIndexMap;
+
+vec3 positionOf(int i) { return vec3(vertices[i].px, vertices[i].py, vertices[i].pz); }
 
 void emit(int i) {
   DcVertex v = vertices[i];
   tfPosition = vec3(v.px, v.py, v.pz);
   tfNormal = vec3(v.nx, v.ny, v.nz);
+  tfVertex = i;
   EmitVertex();
 }
 
@@ -27,6 +34,24 @@ void emitTriangle(int a, int b, int c) {
   emit(b);
   emit(c);
   EndPrimitive();
+}
+
+// Vertex of the patch that holds local edge `e` of `cell`; −1 when the cell's vertices were dropped.
+int patchVertex(ivec3 cell, int e) {
+  int first = imageLoad(uIndexMap, cell).r;
+  return first < 0 ? -1 : first + edgePatch(vertices[first].bits, e);
+}
+
+// The face vertex on the side between `lower` and the cell above it along k, for the lattice edge
+// from sample `start` to `start + a` that lies in that face; −1 when the face has none.
+int faceVertex(ivec3 lower, int k, ivec3 start, ivec3 a) {
+  int first = imageLoad(uIndexMap, lower).r;
+  if (first < 0) return -1;
+  uint bits = vertices[first].bits;
+  if ((faceFlags(bits) & (1u << k)) == 0u) return -1;
+  int slot = faceVertexSlot(lower, k, start);  // the edge's cut end names its segment
+  if (slot < 0) slot = faceVertexSlot(lower, k, start + a);
+  return first + faceVertexOffset(bits, k, slot);
 }
 
 void main() {
@@ -41,15 +66,50 @@ void main() {
     w[(axis + 2) % 3] = 1;
     if (c[(axis + 1) % 3] == 0 || c[(axis + 2) % 3] == 0) continue;  // open at the lattice boundary
     if (isInside(fieldAt(c + a)) == inside0) continue;
-    int q0 = imageLoad(uIndexMap, c - u - w).r, q1 = imageLoad(uIndexMap, c - w).r;
-    int q2 = imageLoad(uIndexMap, c).r, q3 = imageLoad(uIndexMap, c - u).r;
+    // Local edge numbers (patches.glsl) are 4·axis + x + 2y, 4·axis + x + 2z or 4·axis + y + 2z for
+    // edges along z, y or x: an offset along u weighs 1 and along w 2, except for axis y, where
+    // u = z weighs 2 and w = x weighs 1. The cell c − u − w sees the edge at offset (1, 1), and so on.
+    int du = axis == 1 ? 2 : 1, dw = axis == 1 ? 1 : 2;
+    int q0 = patchVertex(c - u - w, 4 * axis + du + dw), q1 = patchVertex(c - w, 4 * axis + dw);
+    int q2 = patchVertex(c, 4 * axis), q3 = patchVertex(c - u, 4 * axis + du);
     if (min(min(q0, q1), min(q2, q3)) < 0) continue;  // a vertex was dropped (overflow)
-    if (inside0) {  // inside at the edge's start: the outward normal is +a
-      emitTriangle(q0, q1, q2);
-      emitTriangle(q0, q2, q3);
+    // The polygon q0, (f01), q1, (f12), q2, (f23), q3, (f30); sides q0–q1 and q2–q3 cross faces
+    // normal to u, sides q1–q2 and q3–q0 faces normal to w (lower cells q0, q1, q3, q0).
+    int ku = (axis + 1) % 3, kw = (axis + 2) % 3;
+    int f01 = faceVertex(c - u - w, ku, c, a), f12 = faceVertex(c - w, kw, c, a);
+    int f23 = faceVertex(c - u, ku, c, a), f30 = faceVertex(c - u - w, kw, c, a);
+    int poly[8];
+    int m = 0;
+    poly[m++] = q0;
+    if (f01 >= 0) poly[m++] = f01;
+    poly[m++] = q1;
+    if (f12 >= 0) poly[m++] = f12;
+    poly[m++] = q2;
+    if (f23 >= 0) poly[m++] = f23;
+    poly[m++] = q3;
+    if (f30 >= 0) poly[m++] = f30;
+    if (!inside0) {  // outside at the edge's start: the outward normal is −a, reverse the polygon
+      for (int i = 1, j = m - 1; i < j; ++i, --j) {
+        int t = poly[i];
+        poly[i] = poly[j];
+        poly[j] = t;
+      }
+    }
+    if (m == 4) {
+      // Split along the shorter diagonal: fewer slivers on bent quads.
+      if (distance(positionOf(poly[0]), positionOf(poly[2])) <= distance(positionOf(poly[1]), positionOf(poly[3]))) {
+        emitTriangle(poly[0], poly[1], poly[2]);
+        emitTriangle(poly[0], poly[2], poly[3]);
+      } else {
+        emitTriangle(poly[0], poly[1], poly[3]);
+        emitTriangle(poly[1], poly[2], poly[3]);
+      }
     } else {
-      emitTriangle(q0, q2, q1);
-      emitTriangle(q0, q3, q2);
+      // A fan from a face vertex: a fan from a cell vertex would add the diagonal between the two
+      // cells that the face vertex keeps apart, the very edge that would be used four times.
+      int r = 0;
+      while (!isFaceVertex(vertices[poly[r]].bits)) ++r;
+      for (int i = 1; i + 1 < m; ++i) emitTriangle(poly[r], poly[(r + i) % m], poly[(r + i + 1) % m]);
     }
   }
 }

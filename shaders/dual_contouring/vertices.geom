@@ -1,28 +1,46 @@
 #version 450 core
-// Pass 2 (surface nets, Gibson 1998): one vertex per sign-changing cell at the mean of its edge
-// crossings, normal = normalised field gradient by central differences on the texture. Captured by
-// transform feedback as (position, normal, cell); the counter also builds the indirect dispatch of
-// the index-map pass (one work group per 64 vertices).
+// Pass 2 (surface nets, Gibson 1998, with one vertex per patch: see patches.glsl): for each patch
+// of a sign-changing cell, a vertex at the mean of the patch's edge crossings, then the face
+// vertices the cell owns; normal = normalised field gradient by central differences on the
+// texture. Captured by transform feedback as (position, normal, cell, bits); the vertices of a
+// cell are consecutive (one invocation emits them in order). The counter also builds the indirect
+// dispatch of the index-map pass (one work group per 64 vertices).
 #include "dual_contouring/lattice.glsl"
+#include "dual_contouring/patches.glsl"
 
 layout(points) in;
-layout(points, max_vertices = 1) out;
+layout(points, max_vertices = 10) out;  // 4 patches + 3 faces × 2
 
 flat in ivec3 vCell[];
 out vec3 tfPosition;
 out vec3 tfNormal;
 flat out int tfCell;
+flat out int tfBits;
 
 // {count, groupsX, groupsY, groupsZ}
 layout(std430, binding = 1) buffer VertexCounter { uint vertexCount; uint groupsX; uint groupsY; uint groupsZ; };
 
-const ivec2 kEdges[12] = ivec2[12](ivec2(0, 1), ivec2(2, 3), ivec2(4, 5), ivec2(6, 7),   // along x
-                                   ivec2(0, 2), ivec2(1, 3), ivec2(4, 6), ivec2(5, 7),   // along y
-                                   ivec2(0, 4), ivec2(1, 5), ivec2(2, 6), ivec2(3, 7));  // along z
-
-vec3 corner(int i) { return vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1); }
-
 float sampleLinear(vec3 s) { return texture(uField, (s + 0.5) / float(uSamples)).r; }
+
+// Crossing of the lattice edge a → b (samples of opposite sign), lattice coordinates.
+vec3 crossing(ivec3 a, ivec3 b) {
+  float va = fieldAt(a), vb = fieldAt(b);
+  return mix(vec3(a), vec3(b), clamp(va / (va - vb), 0.0, 1.0));
+}
+
+void emitVertex(vec3 s, int cell, uint bits) {
+  const float h = 0.5;  // half-cell central differences (trilinear texture)
+  vec3 g = vec3(sampleLinear(s + vec3(h, 0, 0)) - sampleLinear(s - vec3(h, 0, 0)),
+                sampleLinear(s + vec3(0, h, 0)) - sampleLinear(s - vec3(0, h, 0)),
+                sampleLinear(s + vec3(0, 0, h)) - sampleLinear(s - vec3(0, 0, h)));
+  float len = length(g);
+  tfPosition = uOrigin + uCellSize * s;
+  tfNormal = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);
+  tfCell = cell;
+  tfBits = int(bits);
+  EmitVertex();
+  EndPrimitive();
+}
 
 void main() {
   ivec3 c = vCell[0];
@@ -30,32 +48,61 @@ void main() {
   float v[8];
   int insideCount = 0;
   for (int i = 0; i < 8; ++i) {
-    v[i] = fieldAt(c + ivec3(corner(i)));
+    v[i] = fieldAt(c + ivec3(cellCorner(i)));
     insideCount += isInside(v[i]) ? 1 : 0;
   }
   if (insideCount == 0 || insideCount == 8) return;
 
-  vec3 sum = vec3(0.0);
-  float crossings = 0.0;
+  int count;
+  uint bits = cellPatches(v, count);
+  vec3 sum[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  float crossings[4] = float[4](0.0, 0.0, 0.0, 0.0);
   for (int e = 0; e < 12; ++e) {
     int a = kEdges[e].x, b = kEdges[e].y;
     if (isInside(v[a]) == isInside(v[b])) continue;
-    float t = clamp(v[a] / (v[a] - v[b]), 0.0, 1.0);
-    sum += mix(corner(a), corner(b), t);
-    crossings += 1.0;
+    int p = edgePatch(bits, e);
+    sum[p] += crossing(c + ivec3(cellCorner(a)), c + ivec3(cellCorner(b))) - vec3(c);
+    crossings[p] += 1.0;
   }
-  vec3 s = vec3(c) + sum / crossings;  // lattice coordinates
-  const float h = 0.5;                 // half-cell central differences (trilinear texture)
-  vec3 g = vec3(sampleLinear(s + vec3(h, 0, 0)) - sampleLinear(s - vec3(h, 0, 0)),
-                sampleLinear(s + vec3(0, h, 0)) - sampleLinear(s - vec3(0, h, 0)),
-                sampleLinear(s + vec3(0, 0, h)) - sampleLinear(s - vec3(0, 0, h)));
-  float len = length(g);
 
-  uint index = atomicAdd(vertexCount, 1u);
-  if (index % 64u == 0u) atomicAdd(groupsX, 1u);
-  tfPosition = uOrigin + uCellSize * s;
-  tfNormal = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);
-  tfCell = cellIndex(c);
-  EmitVertex();
-  EndPrimitive();
+  // Upper faces whose two segments join the same patch on both sides get face vertices.
+  uint flags = 0u;
+  for (int k = 0; k < 3; ++k) {
+    if (c[k] + 1 >= uSamples - 1 || !ambiguousFace(c, k)) continue;
+    ivec4 e = kFaceEdges[2 * k + 1];  // this cell's upper face along k (opposite edges e.x, e.z lie in different segments)
+    if (edgePatch(bits, e.x) != edgePatch(bits, e.z)) continue;
+    ivec3 kk = ivec3(0);
+    kk[k] = 1;
+    float above[8];
+    for (int i = 0; i < 8; ++i) above[i] = fieldAt(c + kk + ivec3(cellCorner(i)));
+    int aboveCount;
+    uint aboveBits = cellPatches(above, aboveCount);
+    ivec4 eb = kFaceEdges[2 * k];  // the same face, the lower face of the cell above
+    if (edgePatch(aboveBits, eb.x) == edgePatch(aboveBits, eb.z)) flags |= 1u << k;
+  }
+  bits = withPatch(bits, 0, count) | (flags << 28);
+  int total = vertexTotal(bits);
+
+  // Vertices [first, first + total) of this cell; a group of the index-map dispatch starts at
+  // every multiple of 64 in that range.
+  uint first = atomicAdd(vertexCount, uint(total));
+  atomicAdd(groupsX, (first + uint(total) + 63u) / 64u - (first + 63u) / 64u);
+  uint cellBits = bits & ~(3u << 24);  // without the own-patch field
+  int cell = cellIndex(c);
+  for (int p = 0; p < count; ++p) emitVertex(vec3(c) + sum[p] / crossings[p], cell, cellBits | (uint(p) << 24));
+  for (int k = 0; k < 3; ++k) {
+    if ((flags & (1u << k)) == 0u) continue;
+    ivec3 kk = ivec3(0), u = ivec3(0), w = ivec3(0);
+    kk[k] = 1;
+    u[(k + 1) % 3] = 1;
+    w[(k + 2) % 3] = 1;
+    ivec3 s00 = c + kk;
+    for (int slot = 0; slot < 2; ++slot) {
+      // The cut corner with u offset `slot`, and its segment's two crossings.
+      ivec3 cut = faceVertexSlot(c, k, s00 + slot * u) == slot ? s00 + slot * u : s00 + slot * u + w;
+      ivec3 du = slot == 0 ? u : -u;
+      ivec3 dw = cut == s00 + slot * u ? w : -w;
+      emitVertex(0.5 * (crossing(cut, cut + du) + crossing(cut, cut + dw)), cell, cellBits | 0x80000000u);
+    }
+  }
 }
