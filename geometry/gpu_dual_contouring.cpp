@@ -70,7 +70,8 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
     p->set("uBlocks", blocks_);
   }
   indexMap_.set("uSamples", n_);
-  glProgramUniform1ui(indexMap_.id(), indexMap_.location("uCapacity"), static_cast<GLuint>(vertexCapacity_));
+  for (gpu::Program* p : {&indexMap_, &quads_})
+    glProgramUniform1ui(p->id(), p->location("uCapacity"), static_cast<GLuint>(vertexCapacity_));
 }
 
 void GpuDualContouring::upload(const SampledLattice& lattice) {
@@ -94,8 +95,6 @@ void GpuDualContouring::extract() {
   const std::array<GLuint, 4> counterReset{0, 0, 1, 1};             // vertices, groups x, y, z
   drawCommand_.upload(0, sizeof(drawReset), drawReset.data());
   vertexCounter_.upload(0, sizeof(counterReset), counterReset.data());
-  const GLint noVertex = -1;
-  glClearTexImage(indices_.id(), 0, GL_RED_INTEGER, GL_INT, &noVertex);
   field_.bind(0);
 
   // 1. Classify blocks.
@@ -131,6 +130,7 @@ void GpuDualContouring::extract() {
 
   // 4. Quads of the sign-changing edges → mesh buffer.
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, activeBlocks_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, vertexCounter_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, vertexBuffer_.id());
   glBindImageTexture(0, indices_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32I);
   quads_.use();

@@ -1,8 +1,9 @@
 #version 450 core
 // Pass 3: index map. The first vertex of each cell in the transform-feedback buffer (emission
 // order) is stored at its cell; the cell's other vertices follow it (vertex_record.glsl), so the
-// quad pass finds vertex = map[cell] + offset. Dispatched indirectly from the vertex counter. A cell whose vertices
-// did not all fit in the buffer (overflow) is left at −1, and its quads are skipped.
+// quad pass finds vertex = map[cell] + offset. Dispatched indirectly from the vertex counter. A cell
+// whose vertices did not all fit in the buffer (overflow) is not written; the quad pass checks
+// every entry it reads, since the map is not cleared between extractions.
 layout(local_size_x = 64) in;
 
 #include "dual_contouring/vertex_record.glsl"

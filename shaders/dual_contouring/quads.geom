@@ -17,7 +17,23 @@ out vec3 tfNormal;
 flat out int tfVertex;
 
 layout(std430, binding = 2) readonly buffer Vertices { DcVertex vertices[]; };
+layout(std430, binding = 1) readonly buffer VertexCounter { uint vertexCount; };
 layout(r32i, binding = 0) uniform readonly iimage3D uIndexMap;
+uniform uint uCapacity;  // vertices the buffer holds
+
+// First vertex of `cell` in this extraction, or −1. The index map is never cleared (a clear would
+// cost time in proportion to the volume), so an entry is trusted only when the vertex it names is
+// this cell's first vertex and all of the cell's vertices were stored; a stale entry from an
+// earlier extraction, or one of a cell whose vertices were dropped (overflow), fails that test.
+int cellFirstVertex(ivec3 cell) {
+  int first = imageLoad(uIndexMap, cell).r;
+  uint stored = min(vertexCount, uCapacity);
+  if (first < 0 || uint(first) >= stored) return -1;
+  uint bits = vertices[first].bits;
+  bool valid = vertices[first].cell == cellIndex(cell) && !isFaceVertex(bits) && ownPatch(bits) == 0 &&
+               uint(first + vertexTotal(bits)) <= stored;
+  return valid ? first : -1;
+}
 
 vec3 positionOf(int i) { return vec3(vertices[i].px, vertices[i].py, vertices[i].pz); }
 
@@ -38,14 +54,14 @@ void emitTriangle(int a, int b, int c) {
 
 // Vertex of the patch that holds local edge `e` of `cell`; −1 when the cell's vertices were dropped.
 int patchVertex(ivec3 cell, int e) {
-  int first = imageLoad(uIndexMap, cell).r;
+  int first = cellFirstVertex(cell);
   return first < 0 ? -1 : first + edgePatch(vertices[first].bits, e);
 }
 
 // The face vertex on the side between `lower` and the cell above it along k, for the lattice edge
 // from sample `start` to `start + a` that lies in that face; −1 when the face has none.
 int faceVertex(ivec3 lower, int k, ivec3 start, ivec3 a) {
-  int first = imageLoad(uIndexMap, lower).r;
+  int first = cellFirstVertex(lower);
   if (first < 0) return -1;
   uint bits = vertices[first].bits;
   if ((faceFlags(bits) & (1u << k)) == 0u) return -1;
