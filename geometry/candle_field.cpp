@@ -1,13 +1,10 @@
 #include "geometry/candle_field.h"
 
-#include "geometry/openvdb_bounds.h"
+#include "geometry/openvdb_support.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Composite.h>
-#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetFilter.h>
-#include <openvdb/tools/LevelSetSphere.h>
-#include <openvdb/tools/MeshToVolume.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +15,7 @@
 
 namespace tallow::geometry {
 
-struct detail::CandleGrid {
-  openvdb::FloatGrid::Ptr grid;
+struct detail::CandleGrid : LevelSetGrid {
   // Closed-form shape parameters at this t (metres).
   double rimHeight = 0.0;
   double cupDepth = 0.0;
@@ -29,52 +25,9 @@ struct detail::CandleGrid {
 
 namespace {
 
-/// Half-width of the narrow band in voxels (OpenVDB's default, 3).
-constexpr float kHalfWidthVoxels = 3.0f;
-/// Segments of the polygonal cylinders; the chord error R·(1 − cos(π/N)) is 10 µm at R = 2 cm.
-constexpr int kCylinderSegments = 96;
-
-void initialiseOpenVdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
-}
-
 double smoothstep(double a, double b, double x) {
   const double u = std::clamp((x - a) / (b - a), 0.0, 1.0);
   return u * u * (3.0 - 2.0 * u);
-}
-
-/// Level set of a closed y-aligned cylinder (axis through x = z = 0) from y0 to y1, by OpenVDB's
-/// mesh-to-level-set on a polygonal cylinder (OpenVDB 10 has no cylinder primitive).
-openvdb::FloatGrid::Ptr cylinder(double radius, double y0, double y1, const openvdb::math::Transform& xform) {
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec3I> triangles;
-  constexpr auto n = static_cast<unsigned>(kCylinderSegments);
-  for (unsigned i = 0; i < n; ++i) {
-    const double a = 2.0 * std::numbers::pi * i / n;
-    const auto x = static_cast<float>(radius * std::cos(a)), z = static_cast<float>(radius * std::sin(a));
-    points.emplace_back(x, static_cast<float>(y0), z);
-    points.emplace_back(x, static_cast<float>(y1), z);
-  }
-  const unsigned bottom = 2 * n, top = 2 * n + 1;
-  points.emplace_back(0.0f, static_cast<float>(y0), 0.0f);
-  points.emplace_back(0.0f, static_cast<float>(y1), 0.0f);
-  for (unsigned i = 0; i < n; ++i) {
-    const unsigned j = (i + 1) % n;
-    const unsigned b0 = 2 * i, t0 = 2 * i + 1, b1 = 2 * j, t1 = 2 * j + 1;
-    triangles.emplace_back(b0, t0, t1);
-    triangles.emplace_back(b0, t1, b1);
-    triangles.emplace_back(bottom, b0, b1);
-    triangles.emplace_back(top, t1, t0);
-  }
-  return openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(xform, points, triangles, kHalfWidthVoxels);
-}
-
-openvdb::FloatGrid::Ptr sphere(double radius, glm::dvec3 centre, double voxelSize) {
-  return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
-      static_cast<float>(radius), openvdb::Vec3f(static_cast<float>(centre.x), static_cast<float>(centre.y),
-                                                  static_cast<float>(centre.z)),
-      static_cast<float>(voxelSize), kHalfWidthVoxels);
 }
 
 /// The candle at s = t / durationS ∈ [0, 1], from scratch: nothing depends on earlier frames.
@@ -91,7 +44,7 @@ std::shared_ptr<detail::CandleGrid> build(double s, const CandleParams& p) {
   out->cupDepth = d;
   out->cupRadius = cupR;
 
-  auto wax = cylinder(p.radius, 0.0, h, *xform);
+  auto wax = cylinderLevelSet(p.radius, 0.0, h, *xform);
 
   // Drips: chains of spheres hugging the side, each starting at its own time and running down
   // over 30% of the animation to its own length, thickening into a bead at the bottom end.
@@ -108,14 +61,14 @@ std::shared_ptr<detail::CandleGrid> build(double s, const CandleParams& p) {
       const double u = static_cast<double>(k) / steps;
       const double r = p.dripRadius * (0.7 + 0.5 * u * u);
       const glm::dvec3 centre = dir * (p.radius - 0.2 * r) + glm::dvec3(0.0, top - u * length, 0.0);
-      auto bead = sphere(r, centre, p.voxelSize);
+      auto bead = sphereLevelSet(r, centre, p.voxelSize);
       openvdb::tools::csgUnion(*wax, *bead);
     }
   }
 
   // The cup: a spherical bowl of depth d that meets the top at radius cupR, leaving the rim.
   const double bowlR = (cupR * cupR + d * d) / (2.0 * d);
-  auto bowl = sphere(bowlR, glm::dvec3(0.0, h - d + bowlR, 0.0), p.voxelSize);
+  auto bowl = sphereLevelSet(bowlR, glm::dvec3(0.0, h - d + bowlR, 0.0), p.voxelSize);
   openvdb::tools::csgDifference(*wax, *bowl);
 
   // Mean-curvature flow rounds the rim's edges and blends the drips into the side.
@@ -127,7 +80,7 @@ std::shared_ptr<detail::CandleGrid> build(double s, const CandleParams& p) {
   // The wick stands in the middle of the cup, rooted in the wax below it (after smoothing, so
   // that the thin wick keeps its shape).
   const double cupBottom = h - d;
-  auto wick = cylinder(p.wickRadius, cupBottom - 0.004, cupBottom + p.wickLength, *xform);
+  auto wick = cylinderLevelSet(p.wickRadius, cupBottom - 0.004, cupBottom + p.wickLength, *xform);
   openvdb::tools::csgUnion(*wax, *wick);
 
   out->flame = glm::dvec3(0.0, cupBottom + p.wickLength + 0.004, 0.0);
@@ -150,41 +103,30 @@ std::shared_ptr<const detail::CandleGrid> cachedBuild(double s, const CandlePara
   return last;
 }
 
-}  // namespace
-
-CandleField::CandleField(double t, const CandleParams& params) : params_(params), t_(t) {
-  const CandleParams& p = params_;
+const CandleParams& checked(const CandleParams& p, double t) {
   if (!(p.radius > 0.0) || !(p.height > 0.0) || !(p.durationS > 0.0) || !(p.burnFraction >= 0.0) ||
       !(p.burnFraction < 0.9) || !(p.rimWidth > 0.0) || !(p.rimWidth < 0.5 * p.radius) || !(p.cupDepth > 0.0) ||
       !(p.wickRadius > 0.0) || !(p.wickLength > 0.0) || p.dripCount < 0 || !(p.dripRadius > 0.0) ||
       !(p.voxelSize > 0.0) || !(p.voxelSize <= p.wickRadius) || p.smoothingIterations < 0 ||
       !std::isfinite(t))
     throw std::invalid_argument("CandleParams: sizes must be > 0, rimWidth < radius / 2, burnFraction in [0, 0.9), voxelSize ≤ wickRadius");
-  grid_ = cachedBuild(std::clamp(t / p.durationS, 0.0, 1.0), p);
+  return p;
 }
+}  // namespace
+
+CandleField::CandleField(double t, const CandleParams& params)
+    : CandleField(cachedBuild(std::clamp(t / checked(params, t).durationS, 0.0, 1.0), params), t, params) {}
+
+CandleField::CandleField(std::shared_ptr<const detail::CandleGrid> grid, double t, const CandleParams& params)
+    : LevelSetField(grid, params.voxelSize, kHalfWidthVoxels * params.voxelSize), params_(params), t_(t), grid_(std::move(grid)) {}
 
 CandleField::~CandleField() = default;
 CandleField::CandleField(const CandleField&) = default;
 CandleField& CandleField::operator=(const CandleField&) = default;
 
-double CandleField::value(glm::dvec3 p) const {
-  const openvdb::FloatGrid& grid = *grid_->grid;
-  const openvdb::Vec3d ijk = grid.worldToIndex(openvdb::Vec3d(p.x, p.y, p.z));
-  // An unsafe (unregistered) accessor per call: value() runs on many threads at once.
-  const auto accessor = grid.getConstUnsafeAccessor();
-  return static_cast<double>(openvdb::tools::BoxSampler::sample(accessor, ijk));
-}
-
-glm::dvec3 CandleField::gradient(glm::dvec3 p) const {
-  return centralDifferenceGradient(p, 0.5 * params_.voxelSize);
-}
-
-Aabb CandleField::bounds() const { return activeVoxelBounds(*grid_->grid); }
-
 glm::dvec3 CandleField::flamePosition() const { return grid_->flame; }
 double CandleField::rimHeight() const { return grid_->rimHeight; }
 double CandleField::cupRadius() const { return grid_->cupRadius; }
 double CandleField::currentCupDepth() const { return grid_->cupDepth; }
-double CandleField::bandWidth() const { return static_cast<double>(kHalfWidthVoxels) * params_.voxelSize; }
 
 }  // namespace tallow::geometry

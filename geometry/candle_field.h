@@ -5,14 +5,14 @@
 // shapes parameterised by t (OpenVDB's mesh-to-level-set, spheres, CSG and mean-curvature
 // smoothing), so the same t gives the same field whether the animation plays forward or jumps.
 // OpenVDB stays inside candle_field.cpp.
-#include "geometry/scalar_field.h"
+#include "geometry/level_set_field.h"
 
 #include <memory>
 
 namespace tallow::geometry {
 
 namespace detail {
-struct CandleGrid;  // the OpenVDB FloatGrid and the shape at one t, in candle_field.cpp (pimpl)
+struct CandleGrid;  // the level set and the shape at one t, in candle_field.cpp (pimpl)
 }
 
 struct CandleParams {
@@ -32,7 +32,7 @@ struct CandleParams {
   bool operator==(const CandleParams&) const = default;
 };
 
-class CandleField final : public ScalarField {
+class CandleField final : public LevelSetField {
  public:
   /// The candle at time t (seconds, clamped to [0, durationS]). The last grid built is cached, so
   /// constructing the same (t, params) again is cheap. Throws std::invalid_argument on bad params.
@@ -41,23 +41,17 @@ class CandleField final : public ScalarField {
   CandleField(const CandleField&);
   CandleField& operator=(const CandleField&);
 
-  /// Trilinear (box) sample of the level set, metres; outside the narrow band ± the band width.
-  double value(glm::dvec3 p) const override;
-  /// Central differences of value() with a step of half a voxel.
-  glm::dvec3 gradient(glm::dvec3 p) const override;
-  /// World box of the active voxels (the narrow band), so it contains the whole surface.
-  Aabb bounds() const override;
-
   /// Point in the cup a few millimetres above the wick's tip: where the flame (a light) sits.
   glm::dvec3 flamePosition() const;
   double rimHeight() const;       ///< y of the top of the rim at this t, metres
   double cupRadius() const;       ///< radius of the cup where it meets the rim, metres
   double currentCupDepth() const;  ///< depth of the cup below the rim on the axis, metres
-  double bandWidth() const;       ///< half-width of the narrow band, metres
   double time() const { return t_; }
   const CandleParams& params() const { return params_; }
 
  private:
+  CandleField(std::shared_ptr<const detail::CandleGrid> grid, double t, const CandleParams& params);
+
   CandleParams params_;
   double t_;
   std::shared_ptr<const detail::CandleGrid> grid_;

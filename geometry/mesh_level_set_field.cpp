@@ -1,12 +1,15 @@
 #include "geometry/mesh_level_set_field.h"
 
-#include "geometry/openvdb_bounds.h"
+#include "geometry/openvdb_support.h"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/Composite.h>
+#include <openvdb/tools/GridTransformer.h>
+#include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/MeshToVolume.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -14,16 +17,7 @@
 
 namespace tallow::geometry {
 
-struct detail::MeshLevelSetGrid {
-  openvdb::FloatGrid::Ptr grid;
-};
-
 namespace {
-
-void initialiseOpenVdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
-}
 
 double largestExtent(const TriangleMesh& mesh) {
   const Aabb box = mesh.bounds();
@@ -66,12 +60,16 @@ void closeHoles(std::vector<openvdb::Vec3s>& points, std::vector<openvdb::Vec3I>
   }
 }
 
-}  // namespace
 
-MeshLevelSetField::MeshLevelSetField(const TriangleMesh& mesh, int resolution, double bandVoxels)
-    : voxelSize_(resolution > 0 ? largestExtent(mesh) / resolution : 0.0), bandVoxels_(bandVoxels) {
-  if (mesh.triangles.empty() || !(voxelSize_ > 0.0) || resolution < 8 || !(bandVoxels >= 3.0))
+/// Checks the mesh and the band, then returns the voxel size (largest extent / resolution).
+double checkedVoxelSize(const TriangleMesh& mesh, int resolution, double bandVoxels) {
+  const double voxelSize = resolution > 0 ? largestExtent(mesh) / resolution : 0.0;
+  if (mesh.triangles.empty() || !(voxelSize > 0.0) || resolution < 8 || !(bandVoxels >= 3.0))
     throw std::invalid_argument("MeshLevelSetField: need a non-empty mesh, resolution >= 8, bandVoxels >= 3");
+  return voxelSize;
+}
+
+std::shared_ptr<const detail::LevelSetGrid> meshToGrid(const TriangleMesh& mesh, double voxelSize, double bandVoxels) {
   initialiseOpenVdb();
   std::vector<openvdb::Vec3s> points;
   points.reserve(mesh.positions.size());
@@ -84,29 +82,101 @@ MeshLevelSetField::MeshLevelSetField(const TriangleMesh& mesh, int resolution, d
     triangles.emplace_back(t[0], t[1], t[2]);
   }
   closeHoles(points, triangles);
-  const auto xform = openvdb::math::Transform::createLinearTransform(voxelSize_);
-  auto grid = std::make_shared<detail::MeshLevelSetGrid>();
-  grid->grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles,
-                                                                  static_cast<float>(bandVoxels_));
-  grid_ = std::move(grid);
+  const auto xform = openvdb::math::Transform::createLinearTransform(voxelSize);
+  auto grid = std::make_shared<detail::LevelSetGrid>();
+  grid->grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, static_cast<float>(bandVoxels));
+  return grid;
 }
+
+/// The melt at fraction f of `base` (see MeshLevelSetField::melted), from scratch.
+std::shared_ptr<const detail::LevelSetGrid> melt(const openvdb::FloatGrid& base, double f, const MeltParams& p,
+                                                 double voxelSize) {
+  const Aabb box = activeVoxelBounds(base);
+  // The band pads the active box by its half-width on every side; the shape sits inside that.
+  const double band = base.background();
+  const openvdb::Vec3d lo(box.min.x + band, box.min.y + band, box.min.z + band);
+  const openvdb::Vec3d hi(box.max.x - band, box.max.y - band, box.max.z - band);
+  const openvdb::Vec3d anchor(0.5 * (lo.x() + hi.x()), lo.y(), 0.5 * (lo.z() + hi.z()));  // bottom centre
+  const double height = std::max(hi.y() - lo.y(), voxelSize);
+  const double footprint = 0.5 * std::max(hi.x() - lo.x(), hi.z() - lo.z());
+
+  // 1. Slump about the bottom centre, volume-preserving: y × s, x and z × 1/√s. The source grid
+  //    gets the deformed transform (sharing its tree); resampleToMatch rebuilds a signed distance
+  //    on the original voxel lattice.
+  const double s = 1.0 - p.slump * f;
+  openvdb::FloatGrid::Ptr slumped;
+  if (s < 1.0) {
+    // A shallow copy: the tree is shared (and only read), the transform pointer is the copy's own.
+    openvdb::FloatGrid::Ptr deformed = openvdb::ConstPtrCast<openvdb::FloatGrid>(base.copy());
+    openvdb::math::Transform::Ptr xform = base.transform().copy();
+    xform->postTranslate(-anchor);
+    xform->postScale(openvdb::Vec3d(1.0 / std::sqrt(s), s, 1.0 / std::sqrt(s)));
+    xform->postTranslate(anchor);
+    deformed->setTransform(xform);
+    slumped = openvdb::FloatGrid::create(base.background());
+    slumped->setTransform(base.transform().copy());
+    slumped->setGridClass(openvdb::GRID_LEVEL_SET);
+    openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*deformed, *slumped);
+  } else {
+    slumped = base.deepCopy();
+  }
+
+  // 2. The puddle: a disc at the base, wider and thicker as f grows, welded on by CSG union.
+  const double puddleHeight = p.puddleHeight * height * f;
+  if (puddleHeight > voxelSize) {
+    const double radius = footprint / std::sqrt(s) * (1.0 + p.puddleSpread * f);
+    auto puddle = cylinderLevelSet(radius, anchor.y(), anchor.y() + puddleHeight, slumped->transform(), anchor.x(),
+                                   anchor.z());
+    openvdb::tools::csgUnion(*slumped, *puddle);
+  }
+
+  // 3. Mean-curvature flow rounds ears, tips and edges, and blends the puddle into the body.
+  const int iterations = static_cast<int>(std::lround(p.smoothingIterations * f));
+  if (iterations > 0) {
+    openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*slumped);
+    for (int k = 0; k < iterations; ++k) filter.meanCurvature();
+  }
+  auto out = std::make_shared<detail::LevelSetGrid>();
+  out->grid = slumped;
+  return out;
+}
+
+}  // namespace
+
+MeshLevelSetField::MeshLevelSetField(const TriangleMesh& mesh, int resolution, double bandVoxels)
+    : MeshLevelSetField(meshToGrid(mesh, checkedVoxelSize(mesh, resolution, bandVoxels), bandVoxels),
+                        checkedVoxelSize(mesh, resolution, bandVoxels), bandVoxels) {}
+
+MeshLevelSetField::MeshLevelSetField(std::shared_ptr<const detail::LevelSetGrid> grid, double voxelSize, double bandVoxels)
+    : LevelSetField(std::move(grid), voxelSize, bandVoxels * voxelSize), bandVoxels_(bandVoxels) {}
 
 MeshLevelSetField::~MeshLevelSetField() = default;
 MeshLevelSetField::MeshLevelSetField(const MeshLevelSetField&) = default;
 MeshLevelSetField& MeshLevelSetField::operator=(const MeshLevelSetField&) = default;
 
-double MeshLevelSetField::value(glm::dvec3 p) const {
-  const openvdb::FloatGrid& grid = *grid_->grid;
-  const openvdb::Vec3d ijk = grid.worldToIndex(openvdb::Vec3d(p.x, p.y, p.z));
-  // An unsafe (unregistered) accessor per call: value() runs on many threads at once.
-  const auto accessor = grid.getConstUnsafeAccessor();
-  return static_cast<double>(openvdb::tools::BoxSampler::sample(accessor, ijk));
+MeshLevelSetField MeshLevelSetField::melted(double t, const MeltParams& params) const {
+  const MeltParams& p = params;
+  if (!(p.durationS > 0.0) || !(p.slump >= 0.0 && p.slump <= 0.9) || !(p.puddleSpread >= 0.0) ||
+      !(p.puddleHeight >= 0.0 && p.puddleHeight <= 1.0) || p.smoothingIterations < 0 || p.smoothingIterations > 200 ||
+      !std::isfinite(t))
+    throw std::invalid_argument("MeltParams: durationS > 0, slump in [0, 0.9], puddleSpread >= 0, puddleHeight in [0, 1], "
+                                "smoothingIterations in [0, 200], t finite");
+  const double f = std::clamp(t / p.durationS, 0.0, 1.0);
+  if (f == 0.0) return *this;
+  // The last melt of any field, so re-asking the same (field, f, params) is cheap.
+  static std::mutex mutex;
+  static std::shared_ptr<const detail::LevelSetGrid> lastBase;  // held, so its address is not reused
+  static double lastF = -1.0;
+  static MeltParams lastParams;
+  static std::shared_ptr<const detail::LevelSetGrid> last;
+  const std::lock_guard lock(mutex);
+  if (!last || lastBase != levelSet() || lastF != f || !(lastParams == p)) {
+    last = melt(*levelSet()->grid, f, p, voxelSize());
+    lastBase = levelSet();
+    lastF = f;
+    lastParams = p;
+  }
+  return MeshLevelSetField(last, voxelSize(), bandVoxels_);
 }
-
-glm::dvec3 MeshLevelSetField::gradient(glm::dvec3 p) const {
-  return centralDifferenceGradient(p, 0.5 * voxelSize_);
-}
-
-Aabb MeshLevelSetField::bounds() const { return activeVoxelBounds(*grid_->grid); }
 
 }  // namespace tallow::geometry
