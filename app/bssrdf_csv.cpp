@@ -1,66 +1,41 @@
 #include "app/bssrdf_csv.h"
 
-#include <charconv>
-#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
+#include "app/csv_reader.h"
 #include "app/input_error.h"
 
 namespace tallow::app {
 namespace {
-
 constexpr int kColumns = 19;
-
-std::vector<std::string_view> splitColumns(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    out.push_back(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return out;
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
-
 }  // namespace
 
 std::vector<sss::BssrdfConfig> parseBssrdfConfigs(std::string_view text, const std::string& name) {
-  const std::vector<std::string_view> header = splitColumns(kBssrdfConfigColumns);
+  const std::vector<std::string_view> header = splitCsvColumns(kBssrdfConfigColumns);
   std::vector<sss::BssrdfConfig> configs;
-  std::size_t pos = 0;
-  int lineNo = 0;
+  CsvLines lines(text, name);
   bool sawHeader = false;
-  while (pos < text.size()) {
-    const std::size_t end = text.find('\n', pos);
-    const std::string_view line = trim(text.substr(pos, end == std::string_view::npos ? std::string_view::npos : end - pos));
-    pos = end == std::string_view::npos ? text.size() : end + 1;
-    ++lineNo;
-    if (line.empty()) continue;
-    const auto where = name + ":" + std::to_string(lineNo) + ": ";
+  while (lines.next()) {
+    const std::string where = lines.where();
     if (!sawHeader) {
-      if (line != kBssrdfConfigColumns)
+      if (lines.line() != kBssrdfConfigColumns)
         throw InputError(where + "expected the header " + std::string(kBssrdfConfigColumns));
       sawHeader = true;
       continue;
     }
-    const auto cells = splitColumns(line);
+    const auto& cells = lines.cells();
     if (cells.size() != kColumns)
       throw InputError(where + "expected " + std::to_string(kColumns) + " columns, found " + std::to_string(cells.size()));
     double v[kColumns];
     for (int c = 0; c < kColumns; ++c) {
-      const std::string_view cell = trim(cells[static_cast<std::size_t>(c)]);
-      const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v[c]);
-      if (r.ec != std::errc() || r.ptr != cell.data() + cell.size() || !std::isfinite(v[c]))
+      const std::string_view cell = cells[static_cast<std::size_t>(c)].text;
+      const std::optional<double> number = parseFiniteNumber(cell);
+      if (!number)
         throw InputError(where + std::string(header[static_cast<std::size_t>(c)]) + ": \"" +
                          std::string(cell.substr(0, 40)) + "\" is not a finite number");
+      v[c] = *number;
     }
     sss::BssrdfConfig config;
     config.xi = {v[0], v[1], v[2]};

@@ -7,7 +7,9 @@
 #include "app/capture_command.h"
 #include "app/cost_command.h"
 #include "app/extraction_bench_command.h"
+#include "app/field_command.h"
 #include "app/input_error.h"
+#include "app/mesh_command.h"
 #include "app/params.h"
 #include "app/probe_command.h"
 #include "app/profile_command.h"
@@ -111,6 +113,24 @@ int main(int argc, char** argv) {
   extractionCmd->add_option("--gl", extraction.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
   extractionCmd->add_option("--out", extraction.out, "JSON file")->required();
 
+  tallow::app::MeshOptions mesh;
+  auto* meshCmd = app.add_subcommand("mesh", "write the triangles of the preset's field objects at time T as a PLY (world units)");
+  meshCmd->add_option("--preset", mesh.scene.preset, "preset name in presets/ or a path to a JSON file");
+  meshCmd->add_option("--set", mesh.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
+  meshCmd->add_option("--time", mesh.timeS, "animation time [s]");
+  meshCmd->add_option("--res", mesh.res, "lattice samples per axis (default: field.res)");
+  meshCmd->add_flag("--cpu", mesh.cpu, "mesh with OpenVDB volumeToMesh on the same lattice instead of the GPU");
+  meshCmd->add_option("--gl", mesh.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+  meshCmd->add_option("--out", mesh.out, "MESH.ply")->required();
+
+  tallow::app::FieldOptions field;
+  auto* fieldCmd = app.add_subcommand("field", "evaluate the preset's field (value < 0 inside, gradient) at the points of a CSV");
+  fieldCmd->add_option("--preset", field.scene.preset, "preset name in presets/ or a path to a JSON file");
+  fieldCmd->add_option("--set", field.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
+  fieldCmd->add_option("--time", field.timeS, "animation time [s]");
+  fieldCmd->add_option("--in", field.in, "POINTS.csv (header x,y,z; metres)")->required();
+  fieldCmd->add_option("--out", field.out, "VALUES.csv")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -129,6 +149,8 @@ int main(int argc, char** argv) {
     if (*profileCmd) return tallow::app::runProbeProfile(profile);
     if (*costCmd) return tallow::app::runProbeCost(cost);
     if (*extractionCmd) return tallow::app::runProbeExtraction(extraction);
+    if (*meshCmd) return tallow::app::runMesh(mesh);
+    if (*fieldCmd) return tallow::app::runField(field);
     return tallow::app::runView(view);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tallow: %s\n", e.what());

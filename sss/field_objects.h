@@ -1,7 +1,8 @@
 #pragma once
 // The field objects of a scene (ShapeKind::Field): each frame whose time (or field.res) changed,
 // the field at that time is sampled on the CPU over a lattice, uploaded, and isosurfaced on the GPU
-// by GpuDualContouring; otherwise the last transform-feedback mesh is drawn again.
+// by GpuDualContouring; otherwise the last transform-feedback mesh is drawn again. Each object's
+// field, bounds and sampling come from its sss::FieldSource (shared with `tallow mesh` / `field`).
 #include <memory>
 #include <vector>
 

@@ -1,0 +1,90 @@
+#include "sss/field_source.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "geometry/blob_field.h"
+#include "geometry/candle_field.h"
+#include "geometry/mesh_level_set_field.h"
+#include "geometry/ply_reader.h"
+
+namespace tallow::sss {
+
+namespace {
+constexpr int kMeshLevelSetResolution = 128;  // voxels across a mesh field's largest extent
+constexpr float kCandleMargin = 0.25f;        // × radius around the t = 0 candle: room for drips
+}  // namespace
+
+struct FieldSource::Parts {
+  FieldDesc desc;
+  std::unique_ptr<geometry::MeshLevelSetField> mesh;  ///< mesh fields: built once
+  geometry::Aabb bounds;                              ///< field units, contains the surface at every t
+
+  geometry::BlobParams blobParams() const {
+    geometry::BlobParams p;
+    p.scale = desc.blobScale;
+    return p;
+  }
+  geometry::CandleParams candleParams() const {
+    geometry::CandleParams p;
+    p.durationS = desc.candleDurationS;
+    return p;
+  }
+};
+
+FieldSource::FieldSource(const SceneObject& o) : parts_(std::make_unique<Parts>()) {
+  if (o.shape != ShapeKind::Field) throw std::invalid_argument("FieldSource: object \"" + o.name + "\" is not a field");
+  Parts& p = *parts_;
+  p.desc = o.field;
+  switch (o.field.kind) {
+    case FieldKind::Blob: p.bounds = geometry::BlobField(0.0, p.blobParams()).bounds(); break;
+    case FieldKind::Candle: {
+      const geometry::CandleParams params = p.candleParams();
+      p.bounds = geometry::CandleField(0.0, params).bounds();  // the tallest candle
+      const float m = kCandleMargin * static_cast<float>(params.radius);
+      p.bounds.min -= glm::vec3(m, 0.0f, m);
+      p.bounds.max += glm::vec3(m, 0.0f, m);
+      break;
+    }
+    case FieldKind::Mesh: {
+      // As a mesh object: largest extent `scale` metres, bottom centre at the origin.
+      geometry::TriangleMesh mesh = geometry::readPly(o.field.meshPath);
+      const geometry::Aabb b = mesh.bounds();
+      const glm::vec3 size = b.size();
+      const float extent = std::max(size.x, std::max(size.y, size.z));
+      const float s = extent > 0.0f ? o.transform.scale / extent : 1.0f;
+      const glm::vec3 anchor(b.centre().x, b.min.y, b.centre().z);
+      for (glm::vec3& v : mesh.positions) v = (v - anchor) * s;
+      p.mesh = std::make_unique<geometry::MeshLevelSetField>(mesh, kMeshLevelSetResolution);
+      p.bounds = p.mesh->bounds();
+      break;
+    }
+  }
+}
+
+FieldSource::~FieldSource() = default;
+FieldSource::FieldSource(FieldSource&&) noexcept = default;
+FieldSource& FieldSource::operator=(FieldSource&&) noexcept = default;
+
+bool FieldSource::animated() const { return parts_->desc.kind != FieldKind::Mesh; }
+
+geometry::Aabb FieldSource::bounds() const { return parts_->bounds; }
+
+std::unique_ptr<geometry::ScalarField> FieldSource::at(double timeS) const {
+  switch (parts_->desc.kind) {
+    case FieldKind::Blob: return std::make_unique<geometry::BlobField>(timeS, parts_->blobParams());
+    case FieldKind::Candle: return std::make_unique<geometry::CandleField>(timeS, parts_->candleParams());
+    case FieldKind::Mesh: return std::make_unique<geometry::MeshLevelSetField>(*parts_->mesh);  // shares the grid
+  }
+  throw std::logic_error("FieldSource: unknown field kind");
+}
+
+geometry::SampledLattice FieldSource::sample(double timeS, int n) const {
+  const std::unique_ptr<geometry::ScalarField> field = at(timeS);
+  // The blob's lattice covers the box of every t (its own bounds are that box already); candle
+  // and mesh fields are sampled over their own narrow band at t, which the bounds contain.
+  if (parts_->desc.kind == FieldKind::Blob) return geometry::sampleField(*field, parts_->bounds, n);
+  return geometry::sampleField(*field, n);
+}
+
+}  // namespace tallow::sss

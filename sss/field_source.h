@@ -1,0 +1,41 @@
+#pragma once
+// One field object (ShapeKind::Field) of a scene as a source of scalar fields over time: the
+// time-independent parts are built once (a mesh field's level set, the bounds), and at(t) gives the
+// field at time t in field units (before the object's transform, SceneGeometry::modelMatrix).
+// The renderer (FieldObjects) and the `tallow mesh` / `tallow field` commands all go through this
+// class, so they sample and evaluate exactly the same numbers.
+#include <memory>
+
+#include "geometry/grid_sampler.h"
+#include "geometry/scalar_field.h"
+#include "geometry/triangle_mesh.h"
+#include "sss/scene.h"
+
+namespace tallow::sss {
+
+class FieldSource {
+ public:
+  /// Builds the time-independent parts of field object `object` (object.shape must be
+  /// ShapeKind::Field). Throws std::runtime_error naming the file when a mesh field's file is
+  /// missing or broken, std::invalid_argument when `object` is not a field object.
+  explicit FieldSource(const SceneObject& object);
+  ~FieldSource();
+  FieldSource(FieldSource&&) noexcept;
+  FieldSource& operator=(FieldSource&&) noexcept;
+
+  /// True when the field changes with t (blob, candle); a mesh field is the same at every t.
+  bool animated() const;
+  /// Field units: contains the surface at every t (what the renderer's bounds are fitted to).
+  geometry::Aabb bounds() const;
+  /// The field at time t (seconds), field units; value < 0 inside (geometry::ScalarField).
+  std::unique_ptr<geometry::ScalarField> at(double timeS) const;
+  /// at(t) sampled on n³ points over the box the renderer isosurfaces for this kind of field.
+  geometry::SampledLattice sample(double timeS, int n) const;
+
+  struct Parts;  ///< per kind, in field_source.cpp
+
+ private:
+  std::unique_ptr<Parts> parts_;
+};
+
+}  // namespace tallow::sss
