@@ -1,20 +1,16 @@
 #include "geometry/cpu_mesher.h"
 
+#include "geometry/openvdb_support.h"
+
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <cmath>
 #include <limits>
-#include <mutex>
 
 namespace tallow::geometry {
 
 namespace {
-
-void initialiseOpenVdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
-}
 
 /// Samples equal to the background are inactive and skipped by the mesher, so the background is
 /// a value the lattice never holds; it is positive (outside), closing nothing inside the lattice.
