@@ -54,9 +54,10 @@ const std::vector<std::string> kObjectKeys = {"name",     "mesh",   "shape",    
                                               "albedo",   "position", "rotation_deg", "scale", "field"};
 const std::vector<std::string> kBlobFieldKeys = {"type", "scale"};
 const std::vector<std::string> kCandleFieldKeys = {"type", "duration_s"};
-const std::vector<std::string> kMeshFieldKeys = {"type", "mesh"};
+const std::vector<std::string> kMeshFieldKeys = {"type", "mesh", "melt_s"};
 constexpr Range kBlobScale{0.0, 1e3, true};      ///< metres per unscaled blob unit
 constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< seconds until the candle has burnt down
+constexpr Range kMeltDurationS{0.0, 1e6, true};    ///< seconds until a mesh field has melted
 const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta"};
 const std::vector<std::string> kAnimationKeys = {"duration_s", "loop"};
 
@@ -319,6 +320,7 @@ class PresetReader {
       field.kind = sss::FieldKind::Mesh;
       const Ptr mesh = require(p, "mesh");
       field.meshPath = meshPath(mesh);
+      field.meltDurationS = optNumber(p, "melt_s", kMeltDurationS).value_or(0.0f);
       // MODELS.md: Stanford asks that the Dragon not be animated, morphed, boolean-processed or
       // shown damaged; a level set is the path to melting, so it is refused here.
       if (field.meshPath.filename() == "dragon.ply")

@@ -25,6 +25,12 @@ struct FieldSource::Parts {
     p.scale = desc.blobScale;
     return p;
   }
+  geometry::MeltParams meltParams() const {
+    geometry::MeltParams p;
+    p.durationS = desc.meltDurationS;
+    return p;
+  }
+  bool melts() const { return desc.kind == FieldKind::Mesh && desc.meltDurationS > 0.0; }
   geometry::CandleParams candleParams() const {
     geometry::CandleParams p;
     p.durationS = desc.candleDurationS;
@@ -57,6 +63,18 @@ FieldSource::FieldSource(const SceneObject& o) : parts_(std::make_unique<Parts>(
       for (glm::vec3& v : mesh.positions) v = (v - anchor) * s;
       p.mesh = std::make_unique<geometry::MeshLevelSetField>(mesh, kMeshLevelSetResolution);
       p.bounds = p.mesh->bounds();
+      if (p.melts()) {
+        // Slumping widens and the puddle spreads monotonically in t, while the top only sinks:
+        // the boxes at t = 0 and fully melted hold every state between, up to what mean-curvature
+        // flow moves a concave part outward, covered by two voxels.
+        const geometry::MeltParams melt = p.meltParams();
+        const geometry::Aabb end = p.mesh->melted(melt.durationS, melt).bounds();
+        p.bounds.extend(end.min);
+        p.bounds.extend(end.max);
+        const auto pad = static_cast<float>(2.0 * p.mesh->voxelSize());
+        p.bounds.min -= glm::vec3(pad);
+        p.bounds.max += glm::vec3(pad);
+      }
       break;
     }
   }
@@ -66,7 +84,7 @@ FieldSource::~FieldSource() = default;
 FieldSource::FieldSource(FieldSource&&) noexcept = default;
 FieldSource& FieldSource::operator=(FieldSource&&) noexcept = default;
 
-bool FieldSource::animated() const { return parts_->desc.kind != FieldKind::Mesh; }
+bool FieldSource::animated() const { return parts_->desc.kind != FieldKind::Mesh || parts_->melts(); }
 
 geometry::Aabb FieldSource::bounds() const { return parts_->bounds; }
 
@@ -74,16 +92,19 @@ std::unique_ptr<geometry::ScalarField> FieldSource::at(double timeS) const {
   switch (parts_->desc.kind) {
     case FieldKind::Blob: return std::make_unique<geometry::BlobField>(timeS, parts_->blobParams());
     case FieldKind::Candle: return std::make_unique<geometry::CandleField>(timeS, parts_->candleParams());
-    case FieldKind::Mesh: return std::make_unique<geometry::MeshLevelSetField>(*parts_->mesh);  // shares the grid
+    case FieldKind::Mesh:
+      if (parts_->melts()) return std::make_unique<geometry::MeshLevelSetField>(parts_->mesh->melted(timeS, parts_->meltParams()));
+      return std::make_unique<geometry::MeshLevelSetField>(*parts_->mesh);  // shares the grid
   }
   throw std::logic_error("FieldSource: unknown field kind");
 }
 
 geometry::SampledLattice FieldSource::sample(double timeS, int n) const {
   const std::unique_ptr<geometry::ScalarField> field = at(timeS);
-  // The blob's lattice covers the box of every t (its own bounds are that box already); candle
-  // and mesh fields are sampled over their own narrow band at t, which the bounds contain.
-  if (parts_->desc.kind == FieldKind::Blob) return geometry::sampleField(*field, parts_->bounds, n);
+  // The blob's and a melting mesh's lattice covers the box of every t (the blob's own bounds are
+  // that box already); the candle and a still mesh are sampled over their own narrow band at t,
+  // which the bounds contain.
+  if (parts_->desc.kind == FieldKind::Blob || parts_->melts()) return geometry::sampleField(*field, parts_->bounds, n);
   return geometry::sampleField(*field, n);
 }
 

@@ -23,7 +23,7 @@ class FieldSource {
   FieldSource(FieldSource&&) noexcept;
   FieldSource& operator=(FieldSource&&) noexcept;
 
-  /// True when the field changes with t (blob, candle); a mesh field is the same at every t.
+  /// True when the field changes with t (blob, candle, a mesh field with melt_s > 0).
   bool animated() const;
   /// Field units: contains the surface at every t (what the renderer's bounds are fitted to).
   geometry::Aabb bounds() const;

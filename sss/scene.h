@@ -21,6 +21,7 @@ struct FieldDesc {
   double blobScale = 0.03;        ///< blob: metres per unscaled unit (BlobParams::scale)
   double candleDurationS = 20.0;  ///< candle: seconds until it has burnt down (CandleParams::durationS)
   std::filesystem::path meshPath;  ///< mesh: the triangle mesh turned into a level set; absolute
+  double meltDurationS = 0.0;      ///< mesh: seconds until fully melted (MeltParams); 0 = it does not melt
 };
 
 struct Transform {

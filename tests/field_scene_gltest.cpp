@@ -207,6 +207,7 @@ TEST(FieldPreset, ReadsEachFieldType) {
   EXPECT_EQ(presetError(R"({"field": {"type": "blob", "scale": 0.05}})"), "");
   EXPECT_EQ(presetError(R"({"field": {"type": "candle", "duration_s": 30}})"), "");
   EXPECT_EQ(presetError(R"({"field": {"type": "mesh", "mesh": "data:bunny.ply"}, "scale": 0.1})"), "");
+  EXPECT_EQ(presetError(R"({"field": {"type": "mesh", "mesh": "data:bunny.ply", "melt_s": 10}, "scale": 0.1})"), "");
 }
 
 TEST(FieldPreset, ErrorsNameFileLineColumn) {
@@ -226,6 +227,9 @@ TEST(FieldPreset, ErrorsNameFileLineColumn) {
   EXPECT_EQ(dragon.rfind("p.json:4:40: mesh: dragon.ply cannot be a field: Stanford's terms", 0), 0u) << dragon;
   EXPECT_NE(dragon.find("MODELS.md"), std::string::npos);
   EXPECT_EQ(presetError(R"({"field": 3})"), "p.json:4:15: field: expected an object with a \"type\"");
+  const std::string melt = presetError(R"({"field": {"type": "mesh", "mesh": "data:bunny.ply", "melt_s": -1}})");
+  EXPECT_EQ(melt, "p.json:4:68: melt_s: -1 is out of range (0, 1e+06]");
+  EXPECT_EQ(presetError(R"({"field": {"type": "blob", "melt_s": 5}})"), "p.json:4:32: unknown key \"melt_s\"");
 }
 
 }  // namespace

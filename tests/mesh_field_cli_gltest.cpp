@@ -160,6 +160,34 @@ TEST(MeshFieldCli, MeshIsInWorldUnits) {
   EXPECT_NEAR(t.size().x, a.size().y, 1e-5);
 }
 
+TEST(MeshFieldCli, MeltingMeshFieldSlumpsAndSpreadsOverTime) {
+  // The bunny as a mesh field that melts over 10 s (MeltParams defaults: the height shrinks to
+  // 1 − 0.4 = 0.6 by slumping, then mean-curvature flow rounds it; the puddle widens the base).
+  test::TempDir dir;
+  const std::string kCamera = R"({"camera": {"position": [0, 0.06, 0.3], "target": [0, 0.05, 0]},
+  "lights": [{"type": "directional", "direction": [0, 1, 1], "irradiance": [3, 3, 3]}],
+  )";
+  const auto preset = dir.write("melting.json", kCamera + R"("objects": [{"field": {"type": "mesh", "mesh": "data:bunny.ply", "melt_s": 10}, "scale": 0.1}]})");
+  const auto still = dir.write("still.json", kCamera + R"("objects": [{"field": {"type": "mesh", "mesh": "data:bunny.ply"}, "scale": 0.1}]})");
+  const auto at = [&](const std::filesystem::path& p, double t, const std::string& name) {
+    const auto out = dir.path() / (name + ".ply");
+    const auto r = runTallow({"mesh", "--preset", p.string(), "--time", std::to_string(t), "--res", "64", "--out", out.string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return geometry::readPly(out);
+  };
+  const geometry::TriangleMesh start = at(preset, 0.0, "start"), end = at(preset, 10.0, "end");
+  const geometry::TriangleMesh stillEnd = at(still, 10.0, "still");
+  for (const auto* m : {&start, &end}) {
+    EXPECT_EQ(test::badEdges(*m), 0);
+    EXPECT_GT(test::signedVolume(*m), 0.0);
+  }
+  const geometry::Aabb a = start.bounds(), b = end.bounds();
+  EXPECT_LT(b.max.y - b.min.y, 0.62 * (a.max.y - a.min.y));  // slumped to at most 0.6 (+ a cell)
+  EXPECT_GT(b.size().x, 1.2 * a.size().x);                    // the puddle spreads beyond the footprint
+  // Without melt_s the mesh field does not change with time.
+  EXPECT_EQ(stillEnd.triangles.size(), at(still, 0.0, "still0").triangles.size());
+}
+
 TEST(MeshFieldCli, FieldSignGradientAndTransform) {
   test::TempDir dir;
   const glm::dvec3 centre(0.0, 0.06, 0.0);  // the preset's position: all blobs meet there at t = 0
