@@ -49,7 +49,7 @@ const std::vector<std::string> kTopKeys = {"name",    "description", "camera",  
                                            "ambient", "background",  "animation", "settings"};
 const std::vector<std::string> kCameraKeys = {"type", "position", "target", "up", "fov_deg", "height"};
 const std::vector<std::string> kDirectionalKeys = {"type", "direction", "irradiance", "shadows"};
-const std::vector<std::string> kPointKeys = {"type", "position", "intensity", "shadows"};
+const std::vector<std::string> kPointKeys = {"type", "position", "follow", "intensity", "shadows"};
 const std::vector<std::string> kObjectKeys = {"name",     "mesh",   "shape",    "size",        "material",
                                               "albedo",   "position", "rotation_deg", "scale", "field"};
 const std::vector<std::string> kBlobFieldKeys = {"type", "scale"};
@@ -89,6 +89,7 @@ class PresetReader {
     expectArray(objects);
     if (at(objects).empty()) doc_.fail(objects, "objects: a preset needs at least one object");
     for (std::size_t i = 0; i < at(objects).size(); ++i) scene.objects.push_back(readObject(objects / i));
+    if (has(root, "lights")) resolveFollows(root / "lights", scene);
     scene.ambient = optVec3(root, "ambient", paramRange("ambient")).value_or(glm::vec3(0.0f));
     scene.background = optVec3(root, "background", paramRange("ambient")).value_or(glm::vec3(0.0f));
     if (has(root, "animation")) {
@@ -239,11 +240,32 @@ class PresetReader {
     } else {
       checkKeys(p, kPointKeys, "a point light");
       light.kind = sss::LightKind::Point;
-      light.position = vec3(require(p, "position"), "position", paramRange("light.position"));
+      if (has(p, "follow")) {
+        if (has(p, "position"))
+          doc_.failAtKey(p / "position", "a light that follows a flame has no \"position\"; it sits at the flame");
+        if (!at(p / "follow").is_string()) doc_.fail(p / "follow", "follow: expected the name of a candle field object");
+      } else {
+        light.position = vec3(require(p, "position"), "position", paramRange("light.position"));
+      }
       light.intensity = vec3(require(p, "intensity"), "intensity", intensity);
     }
     light.castsShadows = optBool(p, "shadows").value_or(true);
     return light;
+  }
+
+  /// "follow": "<name>" of point lights → the index of that object, which must be a candle field.
+  void resolveFollows(const Ptr& lights, sss::Scene& scene) const {
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+      const Ptr p = lights / i;
+      if (!has(p, "follow")) continue;
+      const std::string name = at(p / "follow").get<std::string>();
+      const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
+                                   [&](const sss::SceneObject& o) { return o.name == name; });
+      if (it == scene.objects.end()) doc_.fail(p / "follow", "follow: no object is named \"" + name + "\"");
+      if (it->shape != sss::ShapeKind::Field || it->field.kind != sss::FieldKind::Candle)
+        doc_.fail(p / "follow", "follow: \"" + name + "\" is not a candle field; only a candle has a flame to follow");
+      scene.lights[i].follow = static_cast<int>(it - scene.objects.begin());
+    }
   }
 
   sss::SceneObject readObject(const Ptr& p) const {

@@ -7,6 +7,7 @@
 #include "geometry/candle_field.h"
 #include "geometry/mesh_level_set_field.h"
 #include "geometry/ply_reader.h"
+#include "sss/scene_geometry.h"
 
 namespace tallow::sss {
 
@@ -14,6 +15,26 @@ namespace {
 constexpr int kMeshLevelSetResolution = 128;  // voxels across a mesh field's largest extent
 constexpr float kCandleMargin = 0.25f;        // × radius around the t = 0 candle: room for drips
 }  // namespace
+
+geometry::CandleParams candleParams(const FieldDesc& desc) {
+  geometry::CandleParams p;
+  p.durationS = desc.candleDurationS;
+  return p;
+}
+
+Scene sceneAtTime(const Scene& scene, double timeS) {
+  Scene out = scene;
+  for (Light& light : out.lights) {
+    if (light.follow < 0) continue;
+    const SceneObject& o = scene.objects.at(static_cast<std::size_t>(light.follow));
+    if (o.shape != ShapeKind::Field || o.field.kind != FieldKind::Candle)
+      throw std::invalid_argument("a light follows object \"" + o.name + "\", which is not a candle field");
+    const glm::dvec3 flame = geometry::CandleField(timeS, candleParams(o.field)).flamePosition();
+    const glm::mat4 model = SceneGeometry::modelMatrix(o, geometry::Aabb{});
+    light.position = glm::vec3(model * glm::vec4(glm::vec3(flame), 1.0f));
+  }
+  return out;
+}
 
 struct FieldSource::Parts {
   FieldDesc desc;
@@ -31,11 +52,7 @@ struct FieldSource::Parts {
     return p;
   }
   bool melts() const { return desc.kind == FieldKind::Mesh && desc.meltDurationS > 0.0; }
-  geometry::CandleParams candleParams() const {
-    geometry::CandleParams p;
-    p.durationS = desc.candleDurationS;
-    return p;
-  }
+  geometry::CandleParams candleParams() const { return sss::candleParams(desc); }
 };
 
 FieldSource::FieldSource(const SceneObject& o) : parts_(std::make_unique<Parts>()) {

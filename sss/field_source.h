@@ -6,12 +6,20 @@
 // class, so they sample and evaluate exactly the same numbers.
 #include <memory>
 
+#include "geometry/candle_field.h"
 #include "geometry/grid_sampler.h"
 #include "geometry/scalar_field.h"
 #include "geometry/triangle_mesh.h"
 #include "sss/scene.h"
 
 namespace tallow::sss {
+
+/// The candle of a FieldKind::Candle description (what FieldSource builds it with).
+geometry::CandleParams candleParams(const FieldDesc& desc);
+
+/// The scene at time t: every light that follows a candle's flame (Light::follow) moved to
+/// CandleField(t).flamePosition() under its object's transform; otherwise `scene` unchanged.
+Scene sceneAtTime(const Scene& scene, double timeS);
 
 class FieldSource {
  public:

@@ -1,8 +1,10 @@
 #include "sss/renderer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "gpu/readback.h"
+#include "sss/field_source.h"
 
 namespace tallow::sss {
 
@@ -83,7 +85,12 @@ void Renderer::ensureTargets(int width, int height) {
   target_.checkComplete("camera target");
 }
 
-FrameTimings Renderer::render(const Scene& scene, const RenderSettings& settings, double timeS) {
+FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& settings, double timeS) {
+  // Lights that follow a candle's flame move with t; everything else is the scene as loaded.
+  const bool follows = std::any_of(sceneAsLoaded.lights.begin(), sceneAsLoaded.lights.end(),
+                                   [](const Light& l) { return l.follow >= 0; });
+  const Scene timed = follows ? sceneAtTime(sceneAsLoaded, timeS) : Scene{};
+  const Scene& scene = follows ? timed : sceneAsLoaded;
   checkLimits(scene, settings);
   ensureTargets(settings.width, settings.height);
   geometry_.update(scene);

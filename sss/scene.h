@@ -57,6 +57,9 @@ struct Light {
   /// Point: radiant intensity [W/sr] per band.
   glm::vec3 intensity{1.0f};
   bool castsShadows = true;
+  /// Point: index in Scene::objects of the candle field whose flame the light sits at, following
+  /// it as the candle burns down (preset key "follow"); −1: the light stays at `position`.
+  int follow = -1;
 };
 
 struct Camera {

@@ -15,6 +15,7 @@
 #include "app/setup.h"
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
+#include "sss/field_source.h"
 #include "gpu/gl_context.h"
 #include "sss/renderer.h"
 
@@ -95,16 +96,29 @@ TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
   const gpu::Image image = s.render(0.0);
   expectFinite(image);
   EXPECT_GT(s.renderer().triangleCount(), 100u);
-  // The point light of the preset is the flame of the candle at t = 0.
+  // The point light of the preset follows the flame of the candle: at the end of the burn it has
+  // come down with the top by burnFraction · height, and by the cup deepening from 35% to 100%
+  // of cupDepth (CandleParams; the wick stands wickLength above the cup's bottom throughout).
   const sss::Scene& scene = s.scene();
   const auto light = std::find_if(scene.lights.begin(), scene.lights.end(),
                                   [](const sss::Light& l) { return l.kind == sss::LightKind::Point; });
   ASSERT_NE(light, scene.lights.end());
-  geometry::CandleParams params;
-  params.durationS = scene.objects[0].field.candleDurationS;
-  const glm::dvec3 flame = geometry::CandleField(0.0, params).flamePosition();
-  std::printf("[ field ] candle flame at t = 0: (%.5f, %.5f, %.5f)\n", flame.x, flame.y, flame.z);
-  EXPECT_LT(glm::length(glm::dvec3(light->position) - flame), 1e-3);
+  ASSERT_EQ(light->follow, 0);
+  const geometry::CandleParams params = sss::candleParams(scene.objects[0].field);
+  const double end = params.durationS;
+  const std::size_t index = static_cast<std::size_t>(light - scene.lights.begin());
+  const glm::dvec3 start(sss::sceneAtTime(scene, 0.0).lights[index].position);
+  const glm::dvec3 burnt(sss::sceneAtTime(scene, end).lights[index].position);
+  const glm::dvec3 position(scene.objects[0].transform.position);
+  std::printf("[ field ] candle flame at t = 0: (%.5f, %.5f, %.5f), at t = %g: y = %.5f\n", start.x, start.y, start.z,
+              end, burnt.y);
+  const double drop = params.burnFraction * params.height + 0.65 * params.cupDepth;
+  constexpr double kFloat = 1e-6;  // light positions are floats (an ulp at 0.1 m is 7e-9)
+  EXPECT_NEAR(start.y - burnt.y, drop, kFloat);
+  const double flameY0 = params.height - 0.35 * params.cupDepth + params.wickLength + 0.004;  // see candle_field.cpp
+  EXPECT_NEAR(start.y - position.y, flameY0, kFloat);
+  EXPECT_NEAR(start.x, position.x, kFloat);
+  EXPECT_NEAR(burnt.z, position.z, kFloat);
   // The candle changes as it burns: frames at the start and the end differ.
   const gpu::Image late = s.render(scene.objects[0].field.candleDurationS);
   expectFinite(late);
@@ -188,8 +202,9 @@ TEST(FieldSceneGL, StaticScenesPlanNoFieldPasses) {
 
 // --- Preset errors --------------------------------------------------------------------------------
 
-std::string presetError(const std::string& object) {
-  const std::string text = "{\n  \"camera\": {\"position\": [0, 0, 1], \"target\": [0, 0, 0]},\n  \"objects\": [\n    " +
+/// The error of a preset with `object` on line 4 and `lights` (if any) at the start of line 2.
+std::string presetError(const std::string& object, const std::string& lights = "") {
+  const std::string text = "{\n  " + lights + "\"camera\": {\"position\": [0, 0, 1], \"target\": [0, 0, 0]},\n  \"objects\": [\n    " +
                            object + "\n  ]\n}\n";
   const sss::MaterialTable materials = sss::MaterialTable::parse(
       "name,source,sigma_s_r,sigma_s_g,sigma_s_b,sigma_a_r,sigma_a_g,sigma_a_b,g_r,g_g,g_b,eta,unit\n"
@@ -227,6 +242,13 @@ TEST(FieldPreset, ErrorsNameFileLineColumn) {
   EXPECT_EQ(dragon.rfind("p.json:4:40: mesh: dragon.ply cannot be a field: Stanford's terms", 0), 0u) << dragon;
   EXPECT_NE(dragon.find("MODELS.md"), std::string::npos);
   EXPECT_EQ(presetError(R"({"field": 3})"), "p.json:4:15: field: expected an object with a \"type\"");
+  EXPECT_EQ(presetError(R"({"field": {"type": "candle"}})", R"("lights": [{"type": "point", "follow": "candle", "intensity": [1, 1, 1]}],)"), "");
+  EXPECT_EQ(presetError(R"({"field": {"type": "candle"}})", R"("lights": [{"type": "point", "follow": "wick", "intensity": [1, 1, 1]}],)"),
+            "p.json:2:42: follow: no object is named \"wick\"");
+  EXPECT_EQ(presetError(R"({"field": {"type": "blob"}})", R"("lights": [{"type": "point", "follow": "blob", "intensity": [1, 1, 1]}],)"),
+            "p.json:2:42: follow: \"blob\" is not a candle field; only a candle has a flame to follow");
+  EXPECT_EQ(presetError(R"({"field": {"type": "candle"}})", R"("lights": [{"type": "point", "follow": "candle", "position": [0, 0, 0], "intensity": [1, 1, 1]}],)"),
+            "p.json:2:52: a light that follows a flame has no \"position\"; it sits at the flame");
   const std::string melt = presetError(R"({"field": {"type": "mesh", "mesh": "data:bunny.ply", "melt_s": -1}})");
   EXPECT_EQ(melt, "p.json:4:68: melt_s: -1 is out of range (0, 1e+06]");
   EXPECT_EQ(presetError(R"({"field": {"type": "blob", "melt_s": 5}})"), "p.json:4:32: unknown key \"melt_s\"");
