@@ -45,16 +45,6 @@ std::vector<FieldSample> evaluateFields(const std::vector<PlacedField>& fields, 
   return samples;
 }
 
-namespace {
-std::string readInputFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-}  // namespace
-
 int runField(const FieldOptions& options) {
   if (options.in.empty()) throw InputError("field: --in POINTS.csv is required");
   if (options.out.empty()) throw InputError("field: --out VALUES.csv is required");

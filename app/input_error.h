@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -17,6 +20,19 @@ class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// The whole of a file the user named (a preset, a CSV); InputError naming it when it is a folder,
+/// cannot be opened or fails to read.
+inline std::string readInputFile(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw InputError(file.string() + ": is a folder, not a file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(file.string() + ": read error");
+  return text.str();
+}
 
 /// Optimal-string-alignment distance (Levenshtein plus adjacent transpositions, so "mpas" is one
 /// edit from "maps"), compared case-insensitively.

@@ -236,14 +236,7 @@ JsonDocument JsonDocument::parse(std::string_view text, std::string fileName) {
 }
 
 JsonDocument JsonDocument::load(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw InputError(file.string() + ": is a folder, not a file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string() + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(file.string() + ": read error");
-  return parse(text.str(), file.string());
+  return parse(readInputFile(file), file.string());
 }
 
 SourceLoc JsonDocument::locateOffset(std::size_t offset) const {

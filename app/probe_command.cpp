@@ -14,16 +14,6 @@
 
 namespace tallow::app {
 
-namespace {
-std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-}  // namespace
-
 int runProbeBssrdf(const ProbeBssrdfOptions& options) {
   sss::BssrdfModel model;
   try {
@@ -36,7 +26,7 @@ int runProbeBssrdf(const ProbeBssrdfOptions& options) {
     throw InputError("--precision: expected float or double, got \"" + precision + "\"");
   if (options.gpu && precision == "double")
     throw InputError("--gpu evaluates in float (GLSL 4.5 has no double-precision exp or pow)");
-  const std::vector<sss::BssrdfConfig> configs = parseBssrdfConfigs(readWholeFile(options.in), options.in);
+  const std::vector<sss::BssrdfConfig> configs = parseBssrdfConfigs(readInputFile(options.in), options.in);
 
   std::vector<sss::BssrdfValue> values;
   if (options.gpu) {

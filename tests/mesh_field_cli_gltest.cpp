@@ -276,7 +276,7 @@ TEST(MeshFieldCli, ErrorsAreOneLineAndWriteNothing) {
   };
   const std::string d = dir.path().string();
   const std::vector<Case> cases{
-      {{"field", "--preset", "blob", "--in", d + "/none.csv", "--out", out}, ".*/none\\.csv: cannot read"},
+      {{"field", "--preset", "blob", "--in", d + "/none.csv", "--out", out}, ".*/none\\.csv: cannot open"},
       {{"field", "--preset", "blob", "--in", header, "--out", out}, ".*/header\\.csv:1:4: expected the header x,y,z"},
       {{"field", "--preset", "blob", "--in", number, "--out", out},
        ".*/number\\.csv:4:12: z: \"0\\.25q\" is not a finite number"},
