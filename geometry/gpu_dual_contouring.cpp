@@ -40,6 +40,16 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
                                       {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
                                      defines, {"tfPosition", "tfNormal", "tfCell", "tfBits"}});
   indexMap_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/index_map.comp"}}, defines});
+  // The patches of every sign configuration, by the shaders' own cellPatches(): built once here.
+  patchTable_ = gpu::Buffer(256 * sizeof(GLuint));
+  {
+    gpu::Program table(library, {{{GL_COMPUTE_SHADER, "dual_contouring/patch_table.comp"}}, defines});
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, patchTable_.id());
+    table.use();
+    glDispatchCompute(256 / kWorkGroup, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(0);
+  }
   quads_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
                                    {GL_GEOMETRY_SHADER, "dual_contouring/quads.geom"}},
                                   defines, {"tfPosition", "tfNormal", "tfVertex"}});
@@ -109,6 +119,7 @@ void GpuDualContouring::extract() {
   emptyVao_.bind();
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, drawCommand_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, vertexCounter_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, patchTable_.id());
   vertices_.use();
   glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, vertexFeedback_.id());
   glBeginQuery(GL_PRIMITIVES_GENERATED, vertexGenerated_.id());
@@ -179,7 +190,7 @@ std::size_t GpuDualContouring::activeBlockCount() const {
 }
 
 std::size_t GpuDualContouring::bufferBytes() const {
-  return activeBlocks_.size() + drawCommand_.size() + vertexCounter_.size() + vertexBuffer_.size() +
+  return activeBlocks_.size() + patchTable_.size() + drawCommand_.size() + vertexCounter_.size() + vertexBuffer_.size() +
          meshBuffer_.size() + field_.bytes() + indices_.bytes();
 }
 

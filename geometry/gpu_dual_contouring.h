@@ -75,7 +75,7 @@ class GpuDualContouring {
 
   gpu::Program classify_, vertices_, indexMap_, quads_;
   gpu::Texture field_, indices_;
-  gpu::Buffer activeBlocks_, drawCommand_, vertexCounter_, vertexBuffer_, meshBuffer_;
+  gpu::Buffer activeBlocks_, patchTable_, drawCommand_, vertexCounter_, vertexBuffer_, meshBuffer_;
   gpu::TransformFeedback vertexFeedback_, meshFeedback_;
   gpu::VertexArray emptyVao_, meshVao_;
   gpu::Query vertexGenerated_, vertexWritten_, meshGenerated_, meshWritten_, timerStart_, timerStop_;

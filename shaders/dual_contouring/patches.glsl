@@ -45,6 +45,19 @@ bool cutsEvenCorners(float f0, float f1, float f2, float f3) {
   return evenInside != joinInside;
 }
 
+// True when face f of a cell with corner values v has four sign changes.
+bool faceIsAmbiguous(float v[8], int f) {
+  ivec4 c = kFaceCorners[f];
+  bool i0 = isInside(v[c.x]), i1 = isInside(v[c.y]), i2 = isInside(v[c.z]), i3 = isInside(v[c.w]);
+  return i0 == i2 && i1 == i3 && i0 != i1;
+}
+
+bool hasAmbiguousFace(float v[8]) {
+  for (int f = 0; f < 6; ++f)
+    if (faceIsAmbiguous(v, f)) return true;
+  return false;
+}
+
 int gParent[12];
 int patchRoot(int e) {
   while (gParent[e] != e) e = gParent[e];
@@ -103,16 +116,4 @@ int faceVertexSlot(ivec3 lower, int k, ivec3 corner) {
   ivec3 d = corner - s00;
   int du = d[(k + 1) % 3], dw = d[(k + 2) % 3];
   return (du == dw) == even ? du : -1;
-}
-
-// True when the face between `lower` and the cell above it along k has four sign changes.
-bool ambiguousFace(ivec3 lower, int k) {
-  ivec3 kk = ivec3(0), u = ivec3(0), w = ivec3(0);
-  kk[k] = 1;
-  u[(k + 1) % 3] = 1;
-  w[(k + 2) % 3] = 1;
-  ivec3 s00 = lower + kk;
-  bool i00 = isInside(fieldAt(s00)), i10 = isInside(fieldAt(s00 + u));
-  bool i11 = isInside(fieldAt(s00 + u + w)), i01 = isInside(fieldAt(s00 + w));
-  return i00 == i11 && i10 == i01 && i00 != i10;
 }

@@ -21,22 +21,6 @@ layout(std430, binding = 1) readonly buffer VertexCounter { uint vertexCount; };
 layout(r32i, binding = 0) uniform readonly iimage3D uIndexMap;
 uniform uint uCapacity;  // vertices the buffer holds
 
-// First vertex of `cell` in this extraction, or −1. The index map is never cleared (a clear would
-// cost time in proportion to the volume), so an entry is trusted only when the vertex it names is
-// this cell's first vertex and all of the cell's vertices were stored; a stale entry from an
-// earlier extraction, or one of a cell whose vertices were dropped (overflow), fails that test.
-int cellFirstVertex(ivec3 cell) {
-  int first = imageLoad(uIndexMap, cell).r;
-  uint stored = min(vertexCount, uCapacity);
-  if (first < 0 || uint(first) >= stored) return -1;
-  uint bits = vertices[first].bits;
-  bool valid = vertices[first].cell == cellIndex(cell) && !isFaceVertex(bits) && ownPatch(bits) == 0 &&
-               uint(first + vertexTotal(bits)) <= stored;
-  return valid ? first : -1;
-}
-
-vec3 positionOf(int i) { return vec3(vertices[i].px, vertices[i].py, vertices[i].pz); }
-
 void emit(int i) {
   DcVertex v = vertices[i];
   tfPosition = vec3(v.px, v.py, v.pz);
@@ -52,18 +36,27 @@ void emitTriangle(int a, int b, int c) {
   EndPrimitive();
 }
 
-// Vertex of the patch that holds local edge `e` of `cell`; −1 when the cell's vertices were dropped.
-int patchVertex(ivec3 cell, int e) {
-  int first = cellFirstVertex(cell);
-  return first < 0 ? -1 : first + edgePatch(vertices[first].bits, e);
+vec3 positionOf(int i) { return vec3(vertices[i].px, vertices[i].py, vertices[i].pz); }
+
+// First vertex of `cell` in this extraction and its bits, or −1. The index map is never cleared
+// (a clear would cost time in proportion to the volume), so an entry is trusted only when the
+// vertex it names is this cell's first vertex and all of the cell's vertices were stored; a stale
+// entry from an earlier extraction, or one of a cell whose vertices were dropped (overflow), fails.
+int cellFirstVertex(ivec3 cell, out uint bits) {
+  int first = imageLoad(uIndexMap, cell).r;
+  uint stored = min(vertexCount, uCapacity);
+  bits = 0u;
+  if (first < 0 || uint(first) >= stored) return -1;
+  bits = vertices[first].bits;
+  bool valid = vertices[first].cell == cellIndex(cell) && !isFaceVertex(bits) && ownPatch(bits) == 0 &&
+               uint(first + vertexTotal(bits)) <= stored;
+  return valid ? first : -1;
 }
 
-// The face vertex on the side between `lower` and the cell above it along k, for the lattice edge
-// from sample `start` to `start + a` that lies in that face; −1 when the face has none.
-int faceVertex(ivec3 lower, int k, ivec3 start, ivec3 a) {
-  int first = cellFirstVertex(lower);
-  if (first < 0) return -1;
-  uint bits = vertices[first].bits;
+// The face vertex on the side between `lower` (first vertex `first`, bits `bits`) and the cell
+// above it along k, for the lattice edge from sample `start` to `start + a` in that face; −1 when
+// the face has none (the common case, decided from the bits already loaded).
+int faceVertex(int first, uint bits, ivec3 lower, int k, ivec3 start, ivec3 a) {
   if ((faceFlags(bits) & (1u << k)) == 0u) return -1;
   int slot = faceVertexSlot(lower, k, start);  // the edge's cut end names its segment
   if (slot < 0) slot = faceVertexSlot(lower, k, start + a);
@@ -86,14 +79,17 @@ void main() {
     // edges along z, y or x: an offset along u weighs 1 and along w 2, except for axis y, where
     // u = z weighs 2 and w = x weighs 1. The cell c − u − w sees the edge at offset (1, 1), and so on.
     int du = axis == 1 ? 2 : 1, dw = axis == 1 ? 1 : 2;
-    int q0 = patchVertex(c - u - w, 4 * axis + du + dw), q1 = patchVertex(c - w, 4 * axis + dw);
-    int q2 = patchVertex(c, 4 * axis), q3 = patchVertex(c - u, 4 * axis + du);
-    if (min(min(q0, q1), min(q2, q3)) < 0) continue;  // a vertex was dropped (overflow)
+    uint b0, b1, b2, b3;
+    int f0 = cellFirstVertex(c - u - w, b0), f1 = cellFirstVertex(c - w, b1);
+    int f2 = cellFirstVertex(c, b2), f3 = cellFirstVertex(c - u, b3);
+    if (min(min(f0, f1), min(f2, f3)) < 0) continue;  // a vertex was dropped (overflow)
+    int q0 = f0 + edgePatch(b0, 4 * axis + du + dw), q1 = f1 + edgePatch(b1, 4 * axis + dw);
+    int q2 = f2 + edgePatch(b2, 4 * axis), q3 = f3 + edgePatch(b3, 4 * axis + du);
     // The polygon q0, (f01), q1, (f12), q2, (f23), q3, (f30); sides q0–q1 and q2–q3 cross faces
     // normal to u, sides q1–q2 and q3–q0 faces normal to w (lower cells q0, q1, q3, q0).
     int ku = (axis + 1) % 3, kw = (axis + 2) % 3;
-    int f01 = faceVertex(c - u - w, ku, c, a), f12 = faceVertex(c - w, kw, c, a);
-    int f23 = faceVertex(c - u, ku, c, a), f30 = faceVertex(c - u - w, kw, c, a);
+    int f01 = faceVertex(f0, b0, c - u - w, ku, c, a), f12 = faceVertex(f1, b1, c - w, kw, c, a);
+    int f23 = faceVertex(f3, b3, c - u, ku, c, a), f30 = faceVertex(f0, b0, c - u - w, kw, c, a);
     int poly[8];
     int m = 0;
     poly[m++] = q0;

@@ -19,6 +19,8 @@ flat out int tfBits;
 
 // {count, groupsX, groupsY, groupsZ}
 layout(std430, binding = 1) buffer VertexCounter { uint vertexCount; uint groupsX; uint groupsY; uint groupsZ; };
+// Patches of each sign configuration (patch_table.comp); bit 31: has an ambiguous face.
+layout(std430, binding = 3) readonly buffer PatchTable { uint patchTable[256]; };
 
 float sampleLinear(vec3 s) { return texture(uField, (s + 0.5) / float(uSamples)).r; }
 
@@ -46,29 +48,33 @@ void main() {
   ivec3 c = vCell[0];
   if (c.x < 0) return;
   float v[8];
-  int insideCount = 0;
+  int config = 0;
   for (int i = 0; i < 8; ++i) {
     v[i] = fieldAt(c + ivec3(cellCorner(i)));
-    insideCount += isInside(v[i]) ? 1 : 0;
+    config |= isInside(v[i]) ? 1 << i : 0;
   }
-  if (insideCount == 0 || insideCount == 8) return;
+  if (config == 0 || config == 255) return;
 
-  int count;
-  uint bits = cellPatches(v, count);
+  // Most cells: the table. A cell with an ambiguous face: its values decide (asymptotic decider).
+  uint entry = patchTable[config];
+  int count = patchCount(entry);
+  uint bits = entry & 0x00FFFFFFu;
+  bool ambiguous = (entry & 0x80000000u) != 0u;
+  if (ambiguous) bits = cellPatches(v, count);
   vec3 sum[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   float crossings[4] = float[4](0.0, 0.0, 0.0, 0.0);
   for (int e = 0; e < 12; ++e) {
     int a = kEdges[e].x, b = kEdges[e].y;
     if (isInside(v[a]) == isInside(v[b])) continue;
     int p = edgePatch(bits, e);
-    sum[p] += crossing(c + ivec3(cellCorner(a)), c + ivec3(cellCorner(b))) - vec3(c);
+    sum[p] += mix(cellCorner(a), cellCorner(b), clamp(v[a] / (v[a] - v[b]), 0.0, 1.0));
     crossings[p] += 1.0;
   }
 
   // Upper faces whose two segments join the same patch on both sides get face vertices.
   uint flags = 0u;
   for (int k = 0; k < 3; ++k) {
-    if (c[k] + 1 >= uSamples - 1 || !ambiguousFace(c, k)) continue;
+    if (!ambiguous || c[k] + 1 >= uSamples - 1 || !faceIsAmbiguous(v, 2 * k + 1)) continue;
     ivec4 e = kFaceEdges[2 * k + 1];  // this cell's upper face along k (opposite edges e.x, e.z lie in different segments)
     if (edgePatch(bits, e.x) != edgePatch(bits, e.z)) continue;
     ivec3 kk = ivec3(0);
