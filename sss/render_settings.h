@@ -2,8 +2,29 @@
 // Every tunable of the renderer, one field each. The names, ranges, defaults and help live in one
 // place only, the parameter registry (app/params.cpp); this struct just holds the values.
 #include "gpu/tonemap.h"
+#include "sss/bssrdf.h"
 
 namespace tallow::sss {
+
+/// How translucent objects are shaded (parameter `method`).
+enum class SssMethod {
+  RadiosityMaps,  ///< scattered radiosity maps (Dal Corso et al. 2017, issue 5)
+  Albedo,         ///< no subsurface transport: Lambertian with the object's albedo (a baseline)
+};
+
+/// The scattered radiosity maps of Dal Corso et al. (sss.* parameters).
+struct SssSettings {
+  SssMethod method = SssMethod::RadiosityMaps;       ///< method
+  BssrdfModel model = BssrdfModel::Directional;      ///< sss.model
+  int maps = 16;              ///< sss.maps: K, the scattered radiosity maps (directions)
+  int samples = 8;            ///< sss.samples: N, samples per texel, map, frame and colour band
+  int mapSize = 512;          ///< sss.map_size [texels] of each scattered radiosity map
+  int lightMapSize = 512;     ///< sss.light_map_size [texels] of each light G-buffer
+  float bias = 0.0f;          ///< sss.bias: ε_bias [× the translucent objects' bounding radius]
+  float comb = 0.0f;          ///< sss.comb: ε_comb [× the translucent objects' bounding radius]
+  int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
+  bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
+};
 
 struct RenderSettings {
   int width = 0;              ///< render.width [px]
@@ -14,6 +35,7 @@ struct RenderSettings {
   int pcfRadius = 0;          ///< render.pcf_radius [texels]
   int fieldRes = 0;           ///< field.res [lattice samples per axis]
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
+  SssSettings sss;
 };
 
 }  // namespace tallow::sss
