@@ -293,11 +293,22 @@ class PresetReader {
       object.meshPath = meshPath(p / "mesh");
       object.name = object.meshPath.stem().string();
     } else {
-      const std::string shape = choice(p / "shape", "shape", {"plane", "sphere", "box"});
-      object.shape = shape == "plane" ? sss::ShapeKind::Plane
-                     : shape == "box" ? sss::ShapeKind::Box
-                                      : sss::ShapeKind::Sphere;
+      const std::string shape = choice(p / "shape", "shape", {"plane", "sphere", "box", "hollow-cylinder"});
+      object.shape = shape == "plane"             ? sss::ShapeKind::Plane
+                     : shape == "box"             ? sss::ShapeKind::Box
+                     : shape == "hollow-cylinder" ? sss::ShapeKind::HollowCylinder
+                                                  : sss::ShapeKind::Sphere;
       object.name = shape;
+      if (object.shape == sss::ShapeKind::HollowCylinder) {
+        // size = [inner radius, outer radius, height]; the bottom is as thick as the wall.
+        const Ptr size = require(p, "size");
+        object.size = vec3(size, "size", kExtent);
+        if (!(object.size.x < object.size.y))
+          doc_.fail(size, "size: a hollow cylinder's inner radius (first) must be less than its outer radius (second)");
+        if (!(object.size.z > object.size.y - object.size.x))
+          doc_.fail(size, "size: a hollow cylinder's height (third) must exceed its wall thickness (outer − inner "
+                          "radius), which is also the thickness of its bottom");
+      }
     }
     if (has(p, "size")) {
       const Ptr size = p / "size";
@@ -306,6 +317,8 @@ class PresetReader {
         object.size = {xz[0], 1.0f, xz[1]};
       } else if (object.shape == sss::ShapeKind::Box) {
         object.size = vec3(size, "size", kExtent);
+      } else if (object.shape == sss::ShapeKind::HollowCylinder) {
+        // read with the shape, above
       } else {
         doc_.failAtKey(size, "\"size\" applies to planes and boxes; " +
                                  std::string(isField ? "a field" : isMesh ? "a mesh" : "a sphere") +

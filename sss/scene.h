@@ -11,7 +11,10 @@
 
 namespace tallow::sss {
 
-enum class ShapeKind { Mesh, Sphere, Plane, Box, Field };
+/// HollowCylinder (preset "hollow-cylinder"): a cup about +y standing on its bottom centre,
+/// `size` = (inner radius, outer radius, height) in metres (× scale); the bottom is as thick as
+/// the wall (outer − inner). See geometry::makeHollowCylinder.
+enum class ShapeKind { Mesh, Sphere, Plane, Box, Field, HollowCylinder };
 
 /// A procedural field isosurfaced every frame on the GPU (ShapeKind::Field, preset key "field").
 enum class FieldKind { Blob, Candle, Mesh };

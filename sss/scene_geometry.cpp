@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "geometry/ply_reader.h"
@@ -12,6 +13,7 @@ namespace {
 
 constexpr int kSphereRings = 96;     // fine enough that shading error stays below 1/255
 constexpr int kSphereSegments = 192;
+constexpr int kHollowCylinderSegments = 128;  // chord sag 0.03% of the radius
 
 std::string shapeKey(const SceneObject& o) {
   switch (o.shape) {
@@ -19,6 +21,11 @@ std::string shapeKey(const SceneObject& o) {
     case ShapeKind::Sphere: return "sphere";
     case ShapeKind::Plane: return "plane";
     case ShapeKind::Box: return "box";
+    case ShapeKind::HollowCylinder: {  // the mesh is built in metres from the size: one per size
+      char key[96];
+      std::snprintf(key, sizeof key, "hollow-cylinder:%.9g,%.9g,%.9g", o.size.x, o.size.y, o.size.z);
+      return key;
+    }
     case ShapeKind::Field: break;  // one shape per object, keyed by index in the constructor
   }
   return "?";
@@ -32,6 +39,10 @@ geometry::TriangleMesh SceneGeometry::shapeMesh(const SceneObject& object) {
     case ShapeKind::Sphere: return geometry::makeSphere(kSphereRings, kSphereSegments);
     case ShapeKind::Plane: return geometry::makePlane();
     case ShapeKind::Box: return geometry::makeBox();
+    case ShapeKind::HollowCylinder:
+      // size = (inner radius, outer radius, height); the bottom is as thick as the wall.
+      return geometry::makeHollowCylinder(object.size.x, object.size.y, object.size.z, object.size.y - object.size.x,
+                                          kHollowCylinderSegments);
     case ShapeKind::Field: break;
   }
   throw std::logic_error("unknown shape");
@@ -56,6 +67,7 @@ glm::mat4 SceneGeometry::modelMatrix(const SceneObject& o, const geometry::Aabb&
     case ShapeKind::Sphere: shape = glm::scale(glm::mat4(1.0f), glm::vec3(t.scale)); break;
     case ShapeKind::Plane: shape = glm::scale(glm::mat4(1.0f), glm::vec3(o.size.x, 1.0f, o.size.z) * t.scale); break;
     case ShapeKind::Box: shape = glm::scale(glm::mat4(1.0f), o.size * t.scale); break;
+    case ShapeKind::HollowCylinder: shape = glm::scale(glm::mat4(1.0f), glm::vec3(t.scale)); break;  // anchor: bottom centre
     case ShapeKind::Field: break;  // already in world units (see the header)
   }
   return glm::translate(glm::mat4(1.0f), t.position) * rotation * shape;
