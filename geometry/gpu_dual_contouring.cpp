@@ -162,9 +162,9 @@ void GpuDualContouring::extract() {
   glQueryCounter(timerStop_.id(), GL_TIMESTAMP);
 }
 
-void GpuDualContouring::draw() const {
+void GpuDualContouring::draw(int instances) const {
   meshVao_.bind();
-  glDrawTransformFeedback(GL_TRIANGLES, meshFeedback_.id());
+  glDrawTransformFeedbackInstanced(GL_TRIANGLES, meshFeedback_.id(), instances);
   glBindVertexArray(0);
 }
 

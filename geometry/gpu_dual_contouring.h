@@ -45,8 +45,9 @@ class GpuDualContouring {
   /// Runs the four passes on the uploaded lattice; no CPU read-back, no stall.
   void extract();
   /// Draws the last extraction as GL_TRIANGLES with the caller's program bound (attribute 0:
-  /// position in world units, 1: unit normal), by glDrawTransformFeedback.
-  void draw() const;
+  /// position in world units, 1: unit normal), by glDrawTransformFeedback(Instanced), `instances`
+  /// times (gl_InstanceID).
+  void draw(int instances = 1) const;
 
   // --- Read-back (tests, `tallow mesh`, stats); each waits for the GPU. ---
   /// The last extraction as an indexed mesh (vertices shared by vertex-buffer index); throws

@@ -35,6 +35,10 @@ bool FieldObjects::any(const Scene& scene) {
                      [](const SceneObject& o) { return o.shape == ShapeKind::Field; });
 }
 
+bool FieldObjects::animated() const {
+  return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->source.animated(); });
+}
+
 bool FieldObjects::stale(double timeS, int res) const {
   return std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) { return e->stale(timeS, res); });
 }

@@ -22,6 +22,8 @@ class FieldObjects {
   ~FieldObjects();
 
   static bool any(const Scene& scene);
+  /// True when some field object changes with time.
+  bool animated() const;
   bool empty() const { return entries_.empty(); }
   /// True when some field must be sampled and extracted again for time t at `res` samples per axis:
   /// nothing extracted yet, res changed, or t changed for an animated field (blob, candle).

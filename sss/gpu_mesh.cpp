@@ -22,9 +22,9 @@ GpuMesh::GpuMesh(const geometry::TriangleMesh& mesh) : triangles_(mesh.triangles
   vao_.setIndexBuffer(indices_);
 }
 
-void GpuMesh::draw() const {
+void GpuMesh::draw(int instances) const {
   vao_.bind();
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(triangles_ * 3), GL_UNSIGNED_INT, nullptr);
+  glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(triangles_ * 3), GL_UNSIGNED_INT, nullptr, instances);
 }
 
 }  // namespace tallow::sss

@@ -8,7 +8,8 @@ namespace tallow::sss {
 class GpuMesh {
  public:
   explicit GpuMesh(const geometry::TriangleMesh& mesh);
-  void draw() const;  ///< binds its vertex array and draws every triangle
+  /// Binds its vertex array and draws every triangle, `instances` times (gl_InstanceID).
+  void draw(int instances = 1) const;
   std::size_t triangleCount() const { return triangles_; }
   std::size_t bytes() const { return vertices_.size() + indices_.size(); }
 

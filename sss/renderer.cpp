@@ -31,10 +31,11 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
                                 std::to_string(std::min(maxTexture, maxViewport[0])) + " pixels per side");
   if (6 * pointCount > maxLayers)
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
+  RadiosityMaps::checkLimits(scene, settings);
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
-    : geometry_(scene), fields_(std::make_unique<FieldObjects>(shaders, scene)), shadows_(shaders),
+    : geometry_(scene), fields_(std::make_unique<FieldObjects>(shaders, scene)), shaders_(shaders), shadows_(shaders),
       surface_(shaders), display_(shaders) {
   checkLimits(scene, settings);
   ensureTargets(settings.width, settings.height);
@@ -59,9 +60,25 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
   if (ShadowPass::needsPoint(scene, settings))
     passes.push_back({"shadow.point", std::to_string(pointShadowed) +
                                           " point light(s) cast shadows: one depth cube each (6 faces)"});
-  passes.push_back({"surface", std::to_string(scene.objects.size()) +
-                                   " object(s) drawn Lambertian with direct light, shadows and ambient (no "
-                                   "subsurface method implemented yet: translucent objects use their albedo)"});
+  const bool maps = RadiosityMaps::applies(scene, settings);
+  if (maps) {
+    int dir = 0, point = 0;
+    for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dir : point)++;
+    const SssSettings& s = settings.sss;
+    passes.push_back({"sss.light_gbuffer", std::to_string(dir) + " directional (orthographic layer) and " +
+                                               std::to_string(point) + " point (cube) light G-buffer(s), " +
+                                               std::to_string(s.lightMapSize) + "^2, one layered pass each kind"});
+    passes.push_back({"sss.maps", std::to_string(s.maps) + " scattered radiosity maps of " + std::to_string(s.mapSize) +
+                                      "^2: depth pre-pass, then " + std::to_string(s.samples) +
+                                      " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
+                                      " dipole), accumulated until " + std::to_string(s.frames) + " frames"});
+  }
+  passes.push_back({"surface", std::to_string(scene.objects.size()) + " object(s): " +
+                                   (maps ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
+                                           "ones Lambertian"
+                                         : "Lambertian with direct light, shadows and ambient (method albedo: "
+                                           "translucent objects use their albedo)") +
+                                   " with direct light, shadows and ambient"});
   return passes;
 }
 
@@ -70,7 +87,14 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
   std::vector<PlannedPass> passes = plan(scene, settings);
   if (!fields_->stale(timeS, settings.fieldRes))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("field.", 0) == 0; });
+  // Converged: nothing the maps depend on changed and F reached sss.frames; only step 3 runs.
+  if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapKey(scene, settings, timeS), settings))
+    std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sss.", 0) == 0; });
   return passes;
+}
+
+std::string Renderer::mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
+  return RadiosityMaps::stateKey(scene, settings, fields_->animated() ? timeS : 0.0);
 }
 
 void Renderer::ensureTargets(int width, int height) {
@@ -107,6 +131,11 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       shadows_.renderDirectional(scene, settings, geometry_);
     } else if (pass.name == "shadow.point") {
       shadows_.renderPoint(scene, settings, geometry_);
+    } else if (pass.name == "sss.light_gbuffer") {
+      if (!maps_) maps_ = std::make_unique<RadiosityMaps>(shaders_);
+      maps_->renderLightGBuffers(scene, settings, geometry_, mapKey(scene, settings, timeS));
+    } else if (pass.name == "sss.maps") {
+      maps_->renderMaps(scene, settings, geometry_);
     } else if (pass.name == "surface") {
       const glm::vec4 clear(scene.background, 1.0f);
       glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &clear.x);
@@ -114,7 +143,8 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       glClearNamedFramebufferfv(target_.id(), GL_DEPTH, 0, &one);
       const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
       const CameraView camera = cameraView(scene.camera, aspect, geometry_.worldBounds());
-      surface_.render(scene, settings, geometry_, camera, shadows_, target_, settings.width, settings.height);
+      const RadiosityMaps* maps = maps_ && RadiosityMaps::applies(scene, settings) ? maps_.get() : nullptr;
+      surface_.render(scene, settings, geometry_, camera, shadows_, maps, target_, settings.width, settings.height);
     }
   }
   FrameTimings t;
@@ -130,7 +160,8 @@ void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapS
 gpu::Image Renderer::readRadiance() const { return gpu::readColor(target_, 0, radiance_.width(), radiance_.height()); }
 
 std::size_t Renderer::gpuBytes() const {
-  return radiance_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes();
+  return radiance_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
+         (maps_ ? maps_->bytes() : 0);
 }
 
 }  // namespace tallow::sss

@@ -12,6 +12,7 @@
 #include "gpu/shader_library.h"
 #include "sss/display_pass.h"
 #include "sss/field_objects.h"
+#include "sss/radiosity_maps.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
@@ -56,13 +57,19 @@ class Renderer {
   /// Meshes, primitives and the last extraction of every field object; the field count reads a
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
   std::size_t triangleCount() const { return geometry_.triangleCount() + fields_->triangleCount(); }
-  std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers
+  std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers, maps
+  /// The radiosity maps, once a frame has used them (null before, or with another method).
+  const RadiosityMaps* radiosityMaps() const { return maps_.get(); }
 
  private:
   void ensureTargets(int width, int height);
+  /// What the radiosity maps depend on at time t (RadiosityMaps::stateKey).
+  std::string mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const;
 
   SceneGeometry geometry_;
   std::unique_ptr<FieldObjects> fields_;
+  const gpu::ShaderLibrary& shaders_;
+  std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
   ShadowPass shadows_;
   SurfacePass surface_;
   DisplayPass display_;

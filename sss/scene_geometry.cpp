@@ -118,6 +118,7 @@ void SceneGeometry::update(const Scene& scene) {
                              (c & 2) ? shape.localBounds.max.y : shape.localBounds.min.y,
                              (c & 4) ? shape.localBounds.max.z : shape.localBounds.min.z);
       const glm::vec3 world(item.model * glm::vec4(corner, 1.0f));
+      items_.back().worldBounds.extend(world);
       bounds_.extend(world);
       if (o.shape != ShapeKind::Plane) casterBounds_.extend(world);
     }
@@ -145,9 +146,9 @@ std::size_t SceneGeometry::bytes() const {
   return n;
 }
 
-void DrawItem::draw() const {
-  if (mesh) mesh->draw();
-  if (field) field->draw();
+void DrawItem::draw(int instances) const {
+  if (mesh) mesh->draw(instances);
+  if (field) field->draw(instances);
 }
 
 }  // namespace tallow::sss

@@ -30,9 +30,11 @@ struct DrawItem {
   glm::mat3 normalMatrix{1.0f};
   glm::vec3 albedo{0.8f};
   const geometry::GpuDualContouring* field = nullptr;  ///< field objects: drawn from here instead of `mesh`
+  geometry::Aabb worldBounds;  ///< the shape's bounds in world units (empty: a field not attached yet)
 
-  /// Draws the item's triangles with the caller's program bound (attribute 0 position, 1 normal).
-  void draw() const;
+  /// Draws the item's triangles with the caller's program bound (attribute 0 position, 1 normal),
+  /// `instances` times (gl_InstanceID: layered passes pick their layer by it).
+  void draw(int instances = 1) const;
 };
 
 class SceneGeometry {

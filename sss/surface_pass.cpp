@@ -1,19 +1,30 @@
 #include "sss/surface_pass.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace tallow::sss {
 namespace {
 constexpr GLuint kDirectionalShadowUnit = 0;
 constexpr GLuint kPointShadowUnit = 1;
+constexpr GLuint kMapsUnit = 2;
+constexpr GLuint kMapDepthUnit = 3;
+constexpr GLuint kMapViewsBinding = 5;  // shaders/sss/algorithm1.glsl
+
+/// std430 layout of algorithm1.glsl's MapViewGpu.
+struct MapViewGpu {
+  glm::mat4 toTexture;
+  glm::vec4 direction;
+  glm::vec4 depthScale;
+};
 }  // namespace
 
 SurfacePass::SurfacePass(const gpu::ShaderLibrary& shaders)
     : program_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}}}) {}
 
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                         const CameraView& camera, const ShadowPass& shadows, const gpu::Framebuffer& target,
-                         int width, int height) {
+                         const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
+                         const gpu::Framebuffer& target, int width, int height) {
   // Lights into the shader's arrays.
   std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
   std::vector<int> dirLayer, pointLayer;
@@ -66,6 +77,28 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
   p.set("uCameraForward", camera.forward);
   p.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
   shadows.bind(kDirectionalShadowUnit, kPointShadowUnit);
+  p.set("uMaps", static_cast<int>(kMapsUnit));
+  p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
+  gpu::Buffer mapViews;
+  if (maps) {
+    // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
+    const float radius = maps->sphere().radius;
+    std::vector<MapViewGpu> views;
+    for (const MapView& v : maps->views()) {
+      // The orthographic depth spans 2·radius (radiosityMapViews): depth units per metre.
+      views.push_back({v.toTexture, glm::vec4(v.direction, 0.0f), glm::vec4(0.5f / std::max(radius, 1e-9f))});
+    }
+    mapViews = gpu::Buffer(views.size() * sizeof(MapViewGpu), views.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, mapViews.id());
+    p.set("uMapCount", static_cast<int>(views.size()));
+    p.set("uMapFrames", maps->frames());
+    p.set("uEpsBias", settings.sss.bias * radius);
+    p.set("uEpsComb", settings.sss.comb * radius);
+    maps->maps().bind(kMapsUnit);
+    maps->mapDepth().bind(kMapDepthUnit);
+  } else {
+    p.set("uMapCount", 0);
+  }
 
   target.bind();
   glViewport(0, 0, width, height);
@@ -78,6 +111,9 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uModel", item.model);
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
+    const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
+    p.set("uTranslucent", maps && object.translucent ? 1 : 0);
+    p.set("uEta", object.material.eta);
     item.draw();
   }
   glDisable(GL_DEPTH_TEST);

@@ -3,6 +3,7 @@
 // ambient sky, into a linear HDR target with depth.
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
+#include "sss/radiosity_maps.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
 #include "sss/shadow_pass.h"
@@ -17,10 +18,11 @@ constexpr int kMaxPointLights = 8;
 class SurfacePass {
  public:
   explicit SurfacePass(const gpu::ShaderLibrary& shaders);
-  /// Draws into `target` (already sized and cleared by the caller).
+  /// Draws into `target` (already sized and cleared by the caller). With `maps` (not null),
+  /// translucent objects are shaded from the scattered radiosity maps (Algorithm 1, Eq. 5).
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-              const CameraView& camera, const ShadowPass& shadows, const gpu::Framebuffer& target, int width,
-              int height);
+              const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
+              const gpu::Framebuffer& target, int width, int height);
 
  private:
   gpu::Program program_;

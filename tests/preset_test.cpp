@@ -301,7 +301,7 @@ TEST(Preset, ObjectsNeedExactlyOneOfMeshAndShape) {
   EXPECT_EQ(errorOf(withObject(R"({"field": {"type": "cube"}})")),
             "p.json:4:24: type: unknown value \"cube\"; choices: blob, candle, mesh");
   EXPECT_EQ(errorOf(withObject(R"({"shape": "cone"})")),
-            "p.json:4:15: shape: unknown value \"cone\"; choices: plane, sphere, box");
+            "p.json:4:15: shape: unknown value \"cone\"; choices: plane, sphere, box, hollow-cylinder");
   EXPECT_EQ(errorOf(withObject(R"({"mesh": ""})")), "p.json:4:14: mesh: empty file name");
   EXPECT_EQ(errorOf(withObject(R"({"mesh": "data:"})")),
             "p.json:4:14: mesh: \"data:\" needs a file name relative to the data folder");

@@ -117,7 +117,9 @@ TEST_P(HollowCylinder, StandsOnItsBottomCentreWithinItsRadius) {
     const double r = std::hypot(double(p.x), double(p.z));
     EXPECT_LE(r, c.outer * (1 + 1e-6));
     // Nothing inside the open cavity: a vertex with r < inner lies on its floor, the bottom or the top.
-    if (r < c.inner * (1 - 1e-6)) EXPECT_TRUE(std::abs(p.y - c.bottom) < 1e-6 || std::abs(p.y) < 1e-7);
+    if (r < c.inner * (1 - 1e-6)) {
+      EXPECT_TRUE(std::abs(p.y - c.bottom) < 1e-6 || std::abs(p.y) < 1e-7);
+    }
   }
 }
 

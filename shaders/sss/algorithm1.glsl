@@ -1,0 +1,38 @@
+// Step 3 of the paper: Algorithm 1, the scattered radiosity B at x_o from the K maps, each
+// weighted by whether its camera sees x_o (a depth comparison with ε_bias, four bilinear taps
+// around the point so that texels near a map's silhouette blend), after moving x_o by ε_comb
+// toward −n_o in the part perpendicular to the map direction. B = colour / (F n).
+uniform int uMapCount;                 // K
+uniform int uMapFrames;                // F
+uniform float uEpsBias;                // ε_bias, world units
+uniform float uEpsComb;                // ε_comb, world units
+uniform sampler2DArray uMaps;          // Σ over frames of B_N, with mipmaps
+uniform sampler2DArrayShadow uMapDepth;
+struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // depthScale.x: depth units per metre
+layout(std430, binding = 5) readonly buffer MapViews { MapViewGpu mapViews[]; };
+
+// dpdx, dpdy: screen-space derivatives of x_o, taken by the caller in uniform control flow (they
+// are undefined inside this loop once some fragments skip a map); the mip level then follows the
+// pixel's footprint on each map.
+vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy) {
+  vec3 colour = vec3(0.0);
+  float n = 0.0;
+  for (int k = 0; k < uMapCount; ++k) {
+    vec3 d = mapViews[k].direction.xyz;
+    float cosTheta = clamp(dot(no, d), 0.0, 1.0);
+    vec3 x = xo - uEpsComb * (no - cosTheta * d);
+    vec4 t = mapViews[k].toTexture * vec4(x, 1.0);
+    vec2 dx = (mapViews[k].toTexture * vec4(dpdx, 0.0)).xy, dy = (mapViews[k].toTexture * vec4(dpdy, 0.0)).xy;
+    float z = t.z - uEpsBias * mapViews[k].depthScale.x;
+    vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
+    float v = 0.25 * (texture(uMapDepth, vec4(t.xy + vec2(-texel.x, -texel.y), float(k), z)) +
+                      texture(uMapDepth, vec4(t.xy + vec2(texel.x, -texel.y), float(k), z)) +
+                      texture(uMapDepth, vec4(t.xy + vec2(-texel.x, texel.y), float(k), z)) +
+                      texture(uMapDepth, vec4(t.xy + vec2(texel.x, texel.y), float(k), z)));
+    if (v <= 0.0) continue;
+    colour += v * textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy).rgb;
+    n += v;
+  }
+  seenBy = n;
+  return n > 0.0 ? colour / (float(max(uMapFrames, 1)) * n) : vec3(0.0);
+}

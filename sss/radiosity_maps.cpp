@@ -1,0 +1,430 @@
+#include "sss/radiosity_maps.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "sss/radiosity_estimator.h"
+#include "sss/view_setup.h"
+
+namespace tallow::sss {
+namespace {
+
+constexpr GLuint kLayerViewsBinding = 4;  // layered.geom
+constexpr GLuint kDirPositionUnit = 0, kDirNormalUnit = 1, kPointPositionUnit = 2, kPointNormalUnit = 3;
+/// Map memory allowed before the renderer refuses K × size² (colour with mipmaps + depth).
+constexpr std::size_t kMapMemoryBudget = std::size_t{4} << 30;
+
+const glm::mat4 kToTexture =
+    glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+
+int mipLevels(int size) { return static_cast<int>(std::floor(std::log2(static_cast<double>(size)))) + 1; }
+
+std::size_t mapBytes(int k, int size) {
+  const auto texels = static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * static_cast<std::size_t>(k);
+  return texels * 16 * 4 / 3 + texels * 4;  // RGBA32F with its mip chain (≤ 4/3), DEPTH32F
+}
+
+/// An orthonormal basis of the plane with normal `w`.
+void planeBasis(const glm::vec3& w, glm::vec3& t1, glm::vec3& t2) {
+  const glm::vec3 helper = std::abs(w.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  t1 = glm::normalize(glm::cross(helper, w));
+  t2 = glm::cross(w, t1);
+}
+
+/// GL state of the layered passes, restored to the defaults at the end of the scope.
+struct LayeredState {
+  LayeredState() {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+  }
+  ~LayeredState() {
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+};
+
+gpu::Texture colourArray(GLenum format, int size, int layers, int levels = 1) {
+  gpu::Texture t = gpu::Texture::create2DArray(format, size, size, layers, levels);
+  t.setFilter(levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST, levels > 1 ? GL_LINEAR : GL_NEAREST);
+  t.setWrap(GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+gpu::Texture cubeArray(GLenum format, int size, int cubes) {
+  gpu::Texture t = gpu::Texture::createCubeArray(format, size, cubes);
+  t.setFilter(GL_NEAREST, GL_NEAREST);
+  t.setWrap(GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+}  // namespace
+
+std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius) {
+  std::vector<MapView> views;
+  const float r = std::max(radius, 1e-6f);
+  for (int i = 0; i < k; ++i) {
+    MapView v;
+    v.direction = glm::vec3(haltonDirection<double>(static_cast<std::uint32_t>(i)));
+    const glm::vec3 eye = centre + v.direction * (2.0f * r);
+    const glm::vec3 up = std::abs(v.direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::mat4 view = glm::lookAt(eye, centre, up);
+    const glm::mat4 projection = glm::ortho(-r, r, -r, r, r, 3.0f * r);  // the sphere spans [r, 3r]
+    v.viewProjection = projection * view;
+    v.toTexture = kToTexture * v.viewProjection;
+    views.push_back(v);
+  }
+  return views;
+}
+
+BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geometry) {
+  geometry::Aabb box;
+  for (const DrawItem& item : geometry.items()) {
+    if (!scene.objects[static_cast<std::size_t>(item.objectIndex)].translucent || item.worldBounds.empty()) continue;
+    box.extend(item.worldBounds.min);
+    box.extend(item.worldBounds.max);
+  }
+  BoundingSphere s;
+  if (box.empty()) return s;
+  s.centre = box.centre();
+  s.radius = 0.5f * glm::length(box.size());
+  return s;
+}
+
+RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
+    : gbufferProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
+                                 {GL_GEOMETRY_SHADER, "sss/layered.geom"},
+                                 {GL_FRAGMENT_SHADER, "sss/light_gbuffer.frag"}}}),
+      depthProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
+                               {GL_GEOMETRY_SHADER, "sss/layered.geom"},
+                               {GL_FRAGMENT_SHADER, "sss/map_depth.frag"}}}),
+      mapProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
+                             {GL_GEOMETRY_SHADER, "sss/layered.geom"},
+                             {GL_FRAGMENT_SHADER, "sss/radiosity_map.frag"}}}),
+      dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
+      dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(dummyDir_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+  glClearTexImage(dummyPoint_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+bool RadiosityMaps::applies(const Scene& scene, const RenderSettings& settings) {
+  return settings.sss.method == SssMethod::RadiosityMaps &&
+         std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.translucent; });
+}
+
+void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settings) {
+  if (!applies(scene, settings)) return;
+  const SssSettings& s = settings.sss;
+  const auto translucent = std::count_if(scene.objects.begin(), scene.objects.end(),
+                                         [](const SceneObject& o) { return o.translucent; });
+  if (translucent > kMaxTranslucentObjects)
+    throw std::invalid_argument("the scene has " + std::to_string(translucent) + " translucent objects; the radiosity "
+                                "maps hold at most " + std::to_string(kMaxTranslucentObjects));
+  int dir = 0, point = 0;
+  for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dir : point)++;
+  if (dir > kMaxSssDirectionalLights || point > kMaxSssPointLights)
+    throw std::invalid_argument("the radiosity maps take at most " + std::to_string(kMaxSssDirectionalLights) +
+                                " directional and " + std::to_string(kMaxSssPointLights) + " point lights");
+  GLint maxLayers = 0, maxTexture = 0, maxCube = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  if (s.maps > maxLayers)
+    throw std::invalid_argument("sss.maps: " + std::to_string(s.maps) + " maps exceed this GPU's "
+                                "GL_MAX_ARRAY_TEXTURE_LAYERS of " + std::to_string(maxLayers));
+  if (s.mapSize > maxTexture)
+    throw std::invalid_argument("sss.map_size: " + std::to_string(s.mapSize) + " exceeds this GPU's GL_MAX_TEXTURE_SIZE of " +
+                                std::to_string(maxTexture));
+  if (s.lightMapSize > maxTexture || (point > 0 && s.lightMapSize > maxCube))
+    throw std::invalid_argument("sss.light_map_size: " + std::to_string(s.lightMapSize) + " exceeds this GPU's " +
+                                (s.lightMapSize > maxTexture ? "GL_MAX_TEXTURE_SIZE of " + std::to_string(maxTexture)
+                                                             : "GL_MAX_CUBE_MAP_TEXTURE_SIZE of " + std::to_string(maxCube)));
+  if (6 * point > maxLayers)
+    throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
+  const std::size_t bytes = mapBytes(s.maps, s.mapSize);
+  if (bytes > kMapMemoryBudget)
+    throw std::invalid_argument("sss.maps × sss.map_size²: " + std::to_string(s.maps) + " maps of " +
+                                std::to_string(s.mapSize) + "² need " + std::to_string(bytes >> 20) +
+                                " MiB, over the " + std::to_string(kMapMemoryBudget >> 20) + " MiB map budget");
+}
+
+std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS) {
+  // Hexadecimal floats: exact, so any change of any input changes the key.
+  std::ostringstream k;
+  k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
+  const SssSettings& s = settings.sss;
+  k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
+    << ',' << s.stereographic << ';';
+  for (const Light& l : scene.lights)
+    k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
+      << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
+      << ',' << l.intensity.z << ';';
+  for (const SceneObject& o : scene.objects) {
+    const Transform& t = o.transform;
+    k << o.translucent << ',' << t.position.x << ',' << t.position.y << ',' << t.position.z << ',' << t.rotationDeg.x
+      << ',' << t.rotationDeg.y << ',' << t.rotationDeg.z << ',' << t.scale << ',' << o.size.x << ',' << o.size.y
+      << ',' << o.size.z << ',';
+    const Material& m = o.material;
+    for (int c = 0; c < 3; ++c) k << m.sigma_a[c] << ',' << m.sigma_s[c] << ',' << m.g[c] << ',';
+    k << m.eta << ';';
+  }
+  return k.str();
+}
+
+bool RadiosityMaps::needsUpdate(const std::string& stateKey, const RenderSettings& settings) const {
+  return stateKey != key_ || frames_ < settings.sss.frames;
+}
+
+void RadiosityMaps::ensureTargets(const RenderSettings& settings, int dirCount, int pointCount) {
+  const int lightSize = settings.sss.lightMapSize;
+  if (dirCount > 0 && (!dirPosition_.id() || dirPosition_.width() != lightSize || dirPosition_.depth() != dirCount)) {
+    dirPosition_ = colourArray(GL_RGBA32F, lightSize, dirCount);
+    dirNormal_ = colourArray(GL_RGBA32F, lightSize, dirCount);
+    dirDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, lightSize, lightSize, dirCount);
+  }
+  if (pointCount > 0 &&
+      (!pointPosition_.id() || pointPosition_.width() != lightSize || pointPosition_.depth() != 6 * pointCount)) {
+    pointPosition_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
+    pointNormal_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
+    pointDepth_ = gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, lightSize, pointCount);
+  }
+  const int k = settings.sss.maps, size = settings.sss.mapSize;
+  if (!maps_.id() || maps_.width() != size || maps_.depth() != k) {
+    maps_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
+    mapDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, k);
+    mapDepth_.setFilter(GL_LINEAR, GL_LINEAR);  // bilinear comparison taps in Algorithm 1
+    mapDepth_.setWrap(GL_CLAMP_TO_BORDER);
+    mapDepth_.setBorderColor(0, 0, 0, 0);  // outside a map: not seen by it
+    mapDepth_.setDepthCompare(true);
+  }
+}
+
+void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings& settings,
+                                        const SceneGeometry& geometry, const std::string& stateKey) {
+  if (stateKey != key_) {  // restart the accumulation
+    key_ = stateKey;
+    frames_ = 0;
+  }
+  slots_.assign(scene.objects.size(), -1);
+  int slot = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].translucent) slots_[i] = slot++;
+  sphere_ = translucentBounds(scene, geometry);
+
+  std::vector<int> dirLights, pointLights;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    (scene.lights[i].kind == LightKind::Directional ? dirLights : pointLights).push_back(static_cast<int>(i));
+  ensureTargets(settings, static_cast<int>(dirLights.size()), static_cast<int>(pointLights.size()));
+  if (frames_ > 0) return;  // light and geometry unchanged: the G-buffers of the first frame hold
+
+  // Layer matrices: directional views fitted to the translucent objects (depth over the whole
+  // scene, so occluders between the light and the object are in front), then point-light cubes.
+  const int size = settings.sss.lightMapSize;
+  geometry::Aabb translucentBox;
+  translucentBox.extend(sphere_.centre - glm::vec3(sphere_.radius));
+  translucentBox.extend(sphere_.centre + glm::vec3(sphere_.radius));
+  dirMatrices_.clear();
+  dirTangent_.clear();
+  dirBitangent_.clear();
+  std::vector<glm::mat4> dirLayers, pointLayers;
+  for (int i : dirLights) {
+    const glm::vec3 w = glm::normalize(scene.lights[static_cast<std::size_t>(i)].direction);
+    float texel = 0.0f;
+    const glm::mat4 vp = directionalShadowViewProjection(w, translucentBox, geometry.worldBounds(), size, texel);
+    dirLayers.push_back(vp);
+    dirMatrices_.push_back(kToTexture * vp);
+    glm::vec3 t1, t2;
+    planeBasis(w, t1, t2);
+    dirTangent_.push_back(t1);
+    dirBitangent_.push_back(t2);
+  }
+  const geometry::Aabb world = geometry.worldBounds();
+  for (int i : pointLights) {
+    const glm::vec3 p = scene.lights[static_cast<std::size_t>(i)].position;
+    float range = 1e-3f;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 corner((c & 1) ? world.max.x : world.min.x, (c & 2) ? world.max.y : world.min.y,
+                             (c & 4) ? world.max.z : world.min.z);
+      range = std::max(range, glm::length(corner - p) * 1.01f);
+    }
+    for (const glm::mat4& face : cubeFaceViewProjections(p, range * 1e-4f, range)) pointLayers.push_back(face);
+  }
+
+  LayeredState state;
+  gbufferProgram_.use();
+  glViewport(0, 0, size, size);
+  const float clearPosition[4] = {0, 0, 0, 0};  // tag 0: nothing
+  const float one = 1.0f;
+  const auto drawAll = [&](const std::vector<glm::mat4>& layers) {
+    layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
+    gbufferProgram_.set("uLayerBase", 0);
+    for (const DrawItem& item : geometry.items()) {
+      const int s = slots_[static_cast<std::size_t>(item.objectIndex)];
+      gbufferProgram_.set("uModel", item.model);
+      gbufferProgram_.set("uNormalMatrix", item.normalMatrix);
+      gbufferProgram_.set("uObjectTag", s + 1);
+      item.draw(static_cast<int>(layers.size()));
+    }
+  };
+  if (!dirLayers.empty()) {
+    gpu::Framebuffer fb;
+    fb.attachColor(0, dirPosition_);
+    fb.attachColor(1, dirNormal_);
+    fb.attachDepth(dirDepth_);
+    fb.setDrawBuffers(2);
+    fb.checkComplete("directional light G-buffer");
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, clearPosition);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, clearPosition);
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+    fb.bind();
+    drawAll(dirLayers);
+  }
+  if (!pointLayers.empty()) {
+    gpu::Framebuffer fb;
+    fb.attachColor(0, pointPosition_);
+    fb.attachColor(1, pointNormal_);
+    fb.attachDepth(pointDepth_);
+    fb.setDrawBuffers(2);
+    fb.checkComplete("point light G-buffer");
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, clearPosition);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, clearPosition);
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+    fb.bind();
+    drawAll(pointLayers);
+  }
+}
+
+void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene) const {
+  std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
+  for (const Light& l : scene.lights) {
+    if (l.kind == LightKind::Directional) {
+      dirDirection.push_back(glm::normalize(l.direction));
+      dirIrradiance.push_back(l.intensity);
+    } else {
+      pointPosition.push_back(l.position);
+      pointIntensity.push_back(l.intensity);
+    }
+  }
+  const int nd = static_cast<int>(dirDirection.size()), np = static_cast<int>(pointPosition.size());
+  p.set("uSssDirCount", nd);
+  p.set("uSssPointCount", np);
+  if (nd > 0) {
+    p.set("uSssDirDirection", dirDirection.data(), nd);
+    p.set("uSssDirIrradiance", dirIrradiance.data(), nd);
+    p.set("uSssDirMatrix", dirMatrices_.data(), nd);
+    p.set("uSssDirTangent", dirTangent_.data(), nd);
+    p.set("uSssDirBitangent", dirBitangent_.data(), nd);
+  }
+  if (np > 0) {
+    p.set("uSssPointPosition", pointPosition.data(), np);
+    p.set("uSssPointIntensity", pointIntensity.data(), np);
+  }
+  p.set("uSssDirPosition", static_cast<int>(kDirPositionUnit));
+  p.set("uSssDirNormal", static_cast<int>(kDirNormalUnit));
+  p.set("uSssPointGPosition", static_cast<int>(kPointPositionUnit));
+  p.set("uSssPointGNormal", static_cast<int>(kPointNormalUnit));
+  (nd > 0 ? dirPosition_ : dummyDir_).bind(kDirPositionUnit);
+  (nd > 0 ? dirNormal_ : dummyDir_).bind(kDirNormalUnit);
+  (np > 0 ? pointPosition_ : dummyPoint_).bind(kPointPositionUnit);
+  (np > 0 ? pointNormal_ : dummyPoint_).bind(kPointNormalUnit);
+}
+
+void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+  const SssSettings& s = settings.sss;
+  const int k = s.maps, size = s.mapSize;
+  LayeredState state;
+  gpu::Framebuffer fb;
+  fb.attachColor(0, maps_);
+  fb.attachDepth(mapDepth_);
+  fb.setDrawBuffers(1);
+  fb.checkComplete("scattered radiosity maps");
+  glViewport(0, 0, size, size);
+
+  if (frames_ == 0) {
+    views_ = radiosityMapViews(k, sphere_.centre, sphere_.radius);
+    std::vector<glm::mat4> layers;
+    for (const MapView& v : views_) layers.push_back(v.viewProjection);
+    layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    const float zero[4] = {0, 0, 0, 0};
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+    // Depth pre-pass of the translucent objects into all K layers.
+    fb.bind();
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    depthProgram_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
+    depthProgram_.set("uLayerBase", 0);
+    for (const DrawItem& item : geometry.items()) {
+      if (slots_[static_cast<std::size_t>(item.objectIndex)] < 0) continue;
+      depthProgram_.set("uModel", item.model);
+      depthProgram_.set("uNormalMatrix", item.normalMatrix);
+      item.draw(k);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+
+  // Shading: the estimator once per visible texel, added to the frames before (Algorithm 1 divides by F).
+  fb.bind();
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  gpu::Program& p = mapProgram_;
+  p.use();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
+  p.set("uLayerBase", 0);
+  setLightUniforms(p, scene);
+  std::vector<glm::vec3> sigmaA(kMaxTranslucentObjects, glm::vec3(0.0f)), sigmaS(kMaxTranslucentObjects, glm::vec3(1.0f)),
+      g(kMaxTranslucentObjects, glm::vec3(0.0f));
+  std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const int slot = slots_[i];
+    if (slot < 0) continue;
+    const Material& m = scene.objects[i].material;
+    sigmaA[static_cast<std::size_t>(slot)] = m.sigma_a;
+    sigmaS[static_cast<std::size_t>(slot)] = m.sigma_s;
+    g[static_cast<std::size_t>(slot)] = m.g;
+    eta[static_cast<std::size_t>(slot)] = m.eta;
+  }
+  p.set("uSigmaA", sigmaA.data(), kMaxTranslucentObjects);
+  p.set("uSigmaS", sigmaS.data(), kMaxTranslucentObjects);
+  p.set("uG", g.data(), kMaxTranslucentObjects);
+  glProgramUniform1fv(p.id(), p.location("uEta"), kMaxTranslucentObjects, eta.data());
+  p.set("uBssrdfModel", static_cast<int>(s.model));
+  p.set("uSamples", s.samples);
+  p.set("uFrame", frames_);
+  p.set("uStereographic", s.stereographic ? 1 : 0);
+  for (const DrawItem& item : geometry.items()) {
+    const int slot = slots_[static_cast<std::size_t>(item.objectIndex)];
+    if (slot < 0) continue;
+    p.set("uModel", item.model);
+    p.set("uNormalMatrix", item.normalMatrix);
+    p.set("uSlot", slot);
+    item.draw(k);
+  }
+  ++frames_;
+  glGenerateTextureMipmap(maps_.id());
+}
+
+std::size_t RadiosityMaps::bytes() const {
+  return dirPosition_.bytes() + dirNormal_.bytes() + dirDepth_.bytes() + pointPosition_.bytes() +
+         pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes();
+}
+
+}  // namespace tallow::sss
