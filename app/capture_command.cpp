@@ -81,6 +81,23 @@ int runCapture(const CaptureOptions& options) {
   }
   run.gpuBytes = renderer.gpuBytes();
   run.triangles = renderer.triangleCount();  // after the frames: includes the last field extraction
+  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
+    const sss::MapCoverage coverage = renderer.mapCoverage();
+    nlohmann::json pearling = nlohmann::json::array();
+    for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, config.render.sss.lightMapSize)) {
+      pearling.push_back({{"object", w.object}, {"band", w.band}, {"mean_free_path_mm", w.meanFreePathMm},
+                          {"light_texel_mm", w.texelMm}});
+      std::fprintf(stderr, "tallow: warning: pearling on %s (band %d): 1/sigma_tr = %.3g mm is below the light "
+                           "G-buffer texel of %.3g mm; raise sss.light_map_size\n",
+                   w.object.c_str(), w.band, w.meanFreePathMm, w.texelMm);
+    }
+    run.sss = {{"map_bytes", maps->bytes()},
+               {"frames_accumulated", maps->frames()},
+               {"translucent_pixels", coverage.translucentPixels},
+               {"unseen_pixels", coverage.unseenPixels},
+               {"unseen_share", coverage.unseenShare()},
+               {"pearling", pearling}};
+  }
 
   std::filesystem::create_directories(out);
   for (int i = 0; i < options.frames; ++i) {

@@ -53,6 +53,7 @@ nlohmann::json toJson(const RunRecord& run) {
         {"gpu_total_ms_median", median(gpuTotal)},
         {"gpu_ms_median", passMedians}}},
       {"parameters", run.parameters},
+      {"sss", run.sss},
   };
 }
 

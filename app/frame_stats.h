@@ -29,6 +29,7 @@ struct RunRecord {
   std::vector<sss::PlannedPass> plan;
   std::vector<FrameRecord> frames;
   nlohmann::json parameters;
+  nlohmann::json sss;  ///< radiosity maps of the last frame (null when the method does not run)
 };
 
 double median(std::vector<double> values);

@@ -19,6 +19,7 @@ uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps
 uniform float uEta;        // its relative index of refraction
 
 layout(location = 0) out vec4 oRadiance;
+layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it
 
 const float PI = 3.14159265358979;
 
@@ -33,9 +34,11 @@ void main() {
     vec3 b = scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
     float cosO = clamp(abs(dot(n, normalize(toCamera))), 0.0, 1.0);
     oRadiance = vec4(fresnelTransmittance(cosO, uEta) / PI * b + fresnelReflectance(cosO, uEta) * uAmbient, 1.0);
+    oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
     return;
   }
   if (backFacing) n = -n;
   vec3 e = lightIrradiance(vWorldPosition, n);
   oRadiance = vec4(uAlbedo / PI * e + uAlbedo * uAmbient, 1.0);
+  oCoverage = vec4(0.0);
 }

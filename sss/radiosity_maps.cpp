@@ -104,6 +104,21 @@ BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geomet
   return s;
 }
 
+std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRadius, int lightMapSize) {
+  std::vector<PearlingWarning> out;
+  // A directional G-buffer spans the bounding sphere's diameter (directionalShadowViewProjection).
+  const double texelMm = 2.0 * static_cast<double>(sphereRadius) * 1000.0 / std::max(lightMapSize, 1);
+  for (const SceneObject& o : scene.objects) {
+    if (!o.translucent) continue;
+    const Material& m = o.material;
+    for (int c = 0; c < 3; ++c) {
+      const double sigmaTr = samplingSigmaTr(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta);
+      if (1.0 / sigmaTr < texelMm) out.push_back({o.name, c, 1.0 / sigmaTr, texelMm});
+    }
+  }
+  return out;
+}
+
 RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
     : gbufferProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
                                  {GL_GEOMETRY_SHADER, "sss/layered.geom"},

@@ -50,6 +50,17 @@ struct BoundingSphere {
 };
 BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geometry);
 
+/// "Pearling" (the paper's §5): where the mean free path of the estimator's samples, 1/σ_tr, is
+/// shorter than a light G-buffer texel, most samples of a texel look up the same G-buffer entry and
+/// the result breaks into beads. One entry per translucent object and colour band where it happens.
+struct PearlingWarning {
+  std::string object;
+  int band = 0;
+  double meanFreePathMm = 0.0;  ///< 1/σ_tr of the band
+  double texelMm = 0.0;         ///< world size of one directional light G-buffer texel
+};
+std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRadius, int lightMapSize);
+
 class RadiosityMaps {
  public:
   explicit RadiosityMaps(const gpu::ShaderLibrary& shaders);
@@ -82,6 +93,12 @@ class RadiosityMaps {
   std::size_t bytes() const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
   const std::vector<int>& slots() const { return slots_; }
+  /// The directional light G-buffers (tests): normals, and per directional light (scene order of
+  /// the directional lights) world → [0,1]³ and the sampling plane's basis.
+  const gpu::Texture& directionalNormals() const { return dirNormal_; }
+  const std::vector<glm::mat4>& directionalMatrices() const { return dirMatrices_; }
+  const std::vector<glm::vec3>& directionalTangents() const { return dirTangent_; }
+  const std::vector<glm::vec3>& directionalBitangents() const { return dirBitangent_; }
 
   /// Everything a state key is built from; exposed for tests.
   static std::string stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS);

@@ -102,10 +102,13 @@ void Renderer::ensureTargets(int width, int height) {
   radiance_ = gpu::Texture::create2D(GL_RGBA32F, width, height);
   radiance_.setFilter(GL_NEAREST, GL_NEAREST);
   depth_ = gpu::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+  coverage_ = gpu::Texture::create2D(GL_RGBA8, width, height);
+  coverage_.setFilter(GL_NEAREST, GL_NEAREST);
   target_ = gpu::Framebuffer();
   target_.attachColor(0, radiance_);
+  target_.attachColor(1, coverage_);
   target_.attachDepth(depth_);
-  target_.setDrawBuffers(1);
+  target_.setDrawBuffers(2);
   target_.checkComplete("camera target");
 }
 
@@ -139,6 +142,8 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
     } else if (pass.name == "surface") {
       const glm::vec4 clear(scene.background, 1.0f);
       glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &clear.x);
+      const glm::vec4 none(0.0f);
+      glClearNamedFramebufferfv(target_.id(), GL_COLOR, 1, &none.x);
       const float one = 1.0f;
       glClearNamedFramebufferfv(target_.id(), GL_DEPTH, 0, &one);
       const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
@@ -159,8 +164,19 @@ void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapS
 
 gpu::Image Renderer::readRadiance() const { return gpu::readColor(target_, 0, radiance_.width(), radiance_.height()); }
 
+MapCoverage Renderer::mapCoverage() const {
+  const gpu::Image c = gpu::readColor(target_, 1, coverage_.width(), coverage_.height());
+  MapCoverage m;
+  for (const glm::vec4& p : c.pixels) {
+    if (p.r < 0.5f) continue;
+    ++m.translucentPixels;
+    if (p.g < 0.5f) ++m.unseenPixels;
+  }
+  return m;
+}
+
 std::size_t Renderer::gpuBytes() const {
-  return radiance_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
+  return radiance_.bytes() + coverage_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
          (maps_ ? maps_->bytes() : 0);
 }
 

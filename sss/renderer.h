@@ -26,6 +26,13 @@ struct PlannedPass {
   std::string reason;  ///< why this scene needs it
 };
 
+/// Visible pixels of translucent objects shaded from the radiosity maps, and those no map sees
+/// (Algorithm 1's n = 0: they get B = 0).
+struct MapCoverage {
+  std::size_t translucentPixels = 0, unseenPixels = 0;
+  double unseenShare() const { return translucentPixels ? double(unseenPixels) / double(translucentPixels) : 0.0; }
+};
+
 struct FrameTimings {
   std::vector<gpu::PassTiming> passes;  ///< GPU ms per pass that ran
   double gpuTotalMs = 0.0;
@@ -53,6 +60,8 @@ class Renderer {
   void display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap);
 
   gpu::Image readRadiance() const;  ///< the last frame, linear, top row first
+  /// Coverage of the last frame by the radiosity maps (reads the frame back: for stats and tests).
+  MapCoverage mapCoverage() const;
   const gpu::Texture& radiance() const { return radiance_; }
   /// Meshes, primitives and the last extraction of every field object; the field count reads a
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
@@ -74,7 +83,7 @@ class Renderer {
   SurfacePass surface_;
   DisplayPass display_;
   gpu::GpuTimer timer_;
-  gpu::Texture radiance_, depth_;
+  gpu::Texture radiance_, coverage_, depth_;
   gpu::Framebuffer target_;
 };
 
