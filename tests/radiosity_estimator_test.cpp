@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/dipole_totals.h"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -36,24 +38,8 @@ RadiosityMaterial fromTable(const std::string& name) {
   return r;
 }
 
-/// Normal-incidence Fresnel transmittance 1 − ((η − 1)/(η + 1))², written out independently.
-double normalTransmittance(double eta) {
-  const double r = (eta - 1.0) / (eta + 1.0);
-  return 1.0 - r * r;
-}
-
-/// Total diffuse reflectance of the standard dipole, Jensen, Marschner, Levoy and Hanrahan 2001
-/// (§2.4 and the BRDF approximation of §3.2, R_d = (α'/2)(1 + e^{−(4/3)A√(3(1−α'))}) e^{−√(3(1−α'))}),
-/// with A = (1 + F_dr)/(1 − F_dr) and F_dr = −1.440/η² + 0.710/η + 0.668 + 0.0636η (their Eq. 4's
-/// fit; the project clamps η to [1, 2.5] for it, which the materials here satisfy).
-double jensenTotalRd(double sigma_a, double sigma_s, double g, double eta) {
-  const double sp = sigma_s * (1.0 - g);
-  const double alphaP = sp / (sigma_a + sp);
-  const double fdr = -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
-  const double A = (1.0 + fdr) / (1.0 - fdr);
-  const double s = std::sqrt(3.0 * (1.0 - alphaP));
-  return 0.5 * alphaP * (1.0 + std::exp(-4.0 / 3.0 * A * s)) * std::exp(-s);
-}
+using test::jensenTotalRd;
+using test::normalTransmittance;
 
 /// n-point Gauss–Legendre nodes and weights on [−1, 1] by Newton's method on P_n.
 struct GaussLegendre {

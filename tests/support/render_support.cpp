@@ -22,6 +22,24 @@ RenderResult renderPreset(const std::string& preset, const std::vector<std::stri
   return result;
 }
 
+PresetSession::PresetSession(const std::string& preset, const std::vector<std::string>& sets, gpu::GlBackend backend) {
+  app::SceneOptions options;
+  options.preset = preset;
+  options.sets = sets;
+  loaded_ = app::loadScene(options);
+  gpu::ContextOptions contextOptions;
+  contextOptions.backend = backend;
+  contextOptions.visible = false;
+  context_ = gpu::GlContext::create(contextOptions);
+  renderer_ = std::make_unique<sss::Renderer>(shaders_, scene(), settings());
+}
+
+gpu::Image PresetSession::render(double timeS, sss::FrameTimings* timings) {
+  const sss::FrameTimings t = renderer_->render(scene(), settings(), timeS);
+  if (timings) *timings = t;
+  return renderer_->readRadiance();
+}
+
 std::string testScene(const std::string& name) {
   return std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/" + name + ".json";
 }

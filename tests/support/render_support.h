@@ -1,8 +1,10 @@
 #pragma once
 // Renders a preset headless in-process, exactly as `tallow capture` does, for image tests.
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "app/setup.h"
 #include "gpu/gl_context.h"
 #include "gpu/image.h"
 #include "sss/renderer.h"
@@ -18,6 +20,25 @@ struct RenderResult {
 /// `preset` is a name in presets/ or a path; `sets` are "key=value" as for --set.
 RenderResult renderPreset(const std::string& preset, const std::vector<std::string>& sets = {},
                           gpu::GlBackend backend = gpu::GlBackend::OsMesa);
+
+/// A preset loaded with `sets`, its hidden GL context and renderer, for tests that render several
+/// frames (progressive accumulation, animation) or read the renderer's state.
+class PresetSession {
+ public:
+  explicit PresetSession(const std::string& preset, const std::vector<std::string>& sets = {},
+                         gpu::GlBackend backend = gpu::GlBackend::OsMesa);
+  sss::Scene& scene() { return loaded_.config.scene; }
+  sss::RenderSettings& settings() { return loaded_.config.render; }
+  sss::Renderer& renderer() { return *renderer_; }
+  /// Renders the frame at time t; returns its linear radiance.
+  gpu::Image render(double timeS = 0.0, sss::FrameTimings* timings = nullptr);
+
+ private:
+  app::LoadedScene loaded_;
+  std::unique_ptr<gpu::GlContext> context_;
+  gpu::ShaderLibrary shaders_;
+  std::unique_ptr<sss::Renderer> renderer_;
+};
 
 /// Path of a test scene in tests/data/.
 std::string testScene(const std::string& name);

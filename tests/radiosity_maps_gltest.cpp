@@ -1,0 +1,271 @@
+// The scattered radiosity maps on llvmpipe (issue 5, point 8): the analytic slab, the GPU estimator
+// against its CPU instantiation with the same random numbers, progressive convergence, the
+// stereographic correction, coverage, finiteness on hard cases, and the GPU limits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "gpu/gl_objects.h"
+#include "sss/radiosity_estimator.h"
+#include "sss/radiosity_maps.h"
+#include "support/dipole_totals.h"
+#include "support/error_of.h"
+#include "support/render_support.h"
+#include "support/run_tallow.h"
+#include "support/temp_dir.h"
+
+namespace tallow {
+namespace {
+
+using test::PresetSession;
+
+/// Level 0 of every layer of a 2D array texture (RGBA32F), layer-major.
+std::vector<glm::vec4> readLayers(const gpu::Texture& t) {
+  std::vector<glm::vec4> texels(static_cast<std::size_t>(t.width()) * t.height() * t.depth());
+  glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
+                    texels.data());
+  return texels;
+}
+
+/// Mean of a band over the centre square of the image (half its width).
+double centreMean(const gpu::Image& image, int band) {
+  double sum = 0.0;
+  int n = 0;
+  for (int y = image.height / 4; y < 3 * image.height / 4; ++y)
+    for (int x = image.width / 4; x < 3 * image.width / 4; ++x, ++n) sum += image.at(x, y)[band];
+  return sum / n;
+}
+
+// --- The analytic slab ---------------------------------------------------------------------------
+
+TEST(RadiosityMaps, SlabMatchesTheStandardDipoleTotalFarFromTheEdges) {
+  // presets/slab.json: marble lit at normal incidence by E = 1 W/m², seen straight down by an
+  // orthographic camera. Far from the edges the scattered radiosity of the standard dipole is
+  // B = F_t(0°) E R_d (the total diffuse reflectance, Jensen et al. 2001), and the camera pass
+  // returns L = F_t(0°)/π · B (Eq. 5; no ambient). The centre square is ≥ 5 cm from the edges,
+  // where e^{−σ_tr·50 mm} < 0.3% of the profile is missing in every band.
+  PresetSession s("slab", {"render.width=48", "render.height=48", "sss.maps=6", "sss.samples=32",
+                           "sss.map_size=128", "sss.light_map_size=512", "sss.frames=64"});
+  gpu::Image image;
+  for (int f = 0; f < 4; ++f) image = s.render();
+  const sss::Material& m = s.scene().objects[0].material;
+  const double ft = test::normalTransmittance(m.eta);
+  for (int c = 0; c < 3; ++c) {
+    const double rd = test::jensenTotalRd(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta);
+    const double expected = ft * ft * rd / 3.14159265358979;
+    const double measured = centreMean(image, c);
+    std::printf("[ maps ] slab band %d: L = %.5f, F_t² E R_d/π = %.5f (ratio %.4f)\n", c, measured, expected,
+                measured / expected);
+    EXPECT_NEAR(measured / expected, 1.0, 0.02) << "band " << c;
+  }
+}
+
+// --- The GPU estimator is the shared code ----------------------------------------------------------
+
+TEST(RadiosityMaps, GpuEstimatorEqualsTheCpuInstantiationAtChosenTexels) {
+  // One frame of the slab. A map texel on the slab's top face (y = 0.05 m, n = +y) has x_o where
+  // the texel centre's ray meets the plane; the CPU runs the float instantiation of the same
+  // estimator (sss/radiosity_estimator.h) with the same random streams (texel, map 0, frame 0)
+  // and looks x_j up in the read-back light G-buffer the way the shader does (nearest texel).
+  PresetSession s("slab", {"render.width=32", "render.height=32", "sss.maps=1", "sss.samples=16",
+                           "sss.map_size=64", "sss.light_map_size=256", "sss.frames=64"});
+  s.render();
+  const sss::RadiosityMaps& maps = *s.renderer().radiosityMaps();
+  ASSERT_EQ(maps.frames(), 1);
+  const std::vector<glm::vec4> b = readLayers(maps.maps());
+  const std::vector<glm::vec4> positions = readLayers(maps.directionalPositions());
+  const std::vector<glm::vec4> normals = readLayers(maps.directionalNormals());
+  const int size = maps.maps().width(), gsize = maps.directionalPositions().width();
+  const glm::mat4 toG = maps.directionalMatrices()[0];
+  const sss::MapView& view = maps.views()[0];
+  const glm::mat4 fromClip = glm::inverse(view.viewProjection);
+  const sss::Material& m = s.scene().objects[0].material;
+  const float top = 0.05f;
+
+  const sss::LightGBufferLookup lookup = [&](const glm::dvec3& xjMm) -> std::optional<sss::LightGBufferHit> {
+    const glm::vec4 t = toG * glm::vec4(glm::vec3(xjMm / 1000.0), 1.0f);
+    if (t.x < 0.0f || t.y < 0.0f || t.x >= 1.0f || t.y >= 1.0f) return std::nullopt;
+    const auto i = static_cast<std::size_t>(static_cast<int>(t.y * gsize)) * gsize + static_cast<int>(t.x * gsize);
+    if (static_cast<int>(positions[i].w + 0.5f) != 1) return std::nullopt;  // not slot 0's tag
+    return sss::LightGBufferHit{glm::dvec3(positions[i]) * 1000.0, glm::normalize(glm::dvec3(normals[i]))};
+  };
+  int compared = 0;
+  double worst = 0.0;
+  for (int y = 0; y < size; y += 7)
+    for (int x = 0; x < size; x += 7) {
+      const glm::vec4 gpu = b[static_cast<std::size_t>(y) * size + x];
+      if (gpu.a <= 0.0f) continue;  // the slab does not cover this texel
+      // The texel centre's ray through the orthographic view, intersected with the top face.
+      const glm::vec2 ndc((x + 0.5f) / size * 2.0f - 1.0f, (y + 0.5f) / size * 2.0f - 1.0f);
+      const glm::vec4 a = fromClip * glm::vec4(ndc, -1.0f, 1.0f), bb = fromClip * glm::vec4(ndc, 1.0f, 1.0f);
+      const glm::vec3 p0 = glm::vec3(a) / a.w, p1 = glm::vec3(bb) / bb.w;
+      if (std::abs(p1.y - p0.y) < 1e-6f) continue;
+      const glm::vec3 xo = p0 + (top - p0.y) / (p1.y - p0.y) * (p1 - p0);
+      if (std::abs(xo.x) > 0.09f || std::abs(xo.z) > 0.09f) continue;  // on the top face, away from its rim
+      sss::ScatteredRadiosityInput in;
+      in.xo = glm::dvec3(xo) * 1000.0;
+      in.no = {0.0, 1.0, 0.0};
+      in.toLight = {0.0, 1.0, 0.0};
+      in.irradiance = glm::dvec3(s.scene().lights[0].intensity);
+      in.material = {glm::dvec3(m.sigma_a), glm::dvec3(m.sigma_s), glm::dvec3(m.g), m.eta};
+      in.model = s.settings().sss.model;
+      in.samples = s.settings().sss.samples;
+      in.texelX = static_cast<std::uint32_t>(x);
+      in.texelY = static_cast<std::uint32_t>(y);
+      in.map = 0;
+      in.frame = 0;
+      in.t1 = glm::dvec3(maps.directionalTangents()[0]);
+      in.t2 = glm::dvec3(maps.directionalBitangents()[0]);
+      const sss::ScatteredRadiosity cpu = sss::estimateScatteredRadiosity<float>(in, lookup);
+      for (int c = 0; c < 3; ++c) {
+        const double rel = std::abs(gpu[c] - cpu.B[c]) / std::max(cpu.B[c], 1e-12);
+        worst = std::max(worst, rel);
+        EXPECT_LT(rel, 2e-3) << "texel " << x << "," << y << " band " << c << ": GPU " << gpu[c] << ", CPU " << cpu.B[c];
+      }
+      ++compared;
+    }
+  std::printf("[ maps ] %d texels compared, worst relative difference %.2e\n", compared, worst);
+  EXPECT_GE(compared, 20);
+}
+
+// --- Progressive accumulation ------------------------------------------------------------------------
+
+TEST(RadiosityMaps, ProgressiveErrorFallsLikeOneOverTheSquareRootOfFrames) {
+  // The image after F frames averages F independent frames of the estimator, so against the image
+  // after R = 32 frames (which contains them) the RMS difference is σ √(1/F − 1/R): the ratio for
+  // F = 1 and F = 4 is √((1 − 1/32)/(1/4 − 1/32)) = 2.10, and for F = 4 and 16, √7 = 2.65.
+  constexpr int kReference = 32;
+  PresetSession s("bunny", {"render.width=64", "render.height=48", "sss.maps=6", "sss.samples=2",
+                            "sss.map_size=128", "sss.light_map_size=256", "sss.frames=32"});
+  std::vector<gpu::Image> at;  // after 1, 4, 16 frames
+  gpu::Image image;
+  for (int f = 1; f <= kReference; ++f) {
+    image = s.render();
+    if (f == 1 || f == 4 || f == 16) at.push_back(image);
+  }
+  const auto rms = [&](const gpu::Image& a) {
+    double sum = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+      if (image.pixels[i].r <= 0.0f) continue;
+      for (int c = 0; c < 3; ++c) sum += std::pow(a.pixels[i][c] - image.pixels[i][c], 2.0);
+      ++n;
+    }
+    return std::sqrt(sum / std::max(n, 1));
+  };
+  const double e1 = rms(at[0]), e4 = rms(at[1]), e16 = rms(at[2]);
+  std::printf("[ maps ] RMS against %d frames: F=1 %.3e, F=4 %.3e, F=16 %.3e (ratios %.2f, %.2f)\n", kReference, e1,
+              e4, e16, e1 / e4, e4 / e16);
+  const double r = kReference;
+  // ±20%: the ratio of two RMS estimates over ~1000 pixel values of correlated map texels.
+  EXPECT_NEAR(e1 / e4, std::sqrt((1.0 - 1.0 / r) / (0.25 - 1.0 / r)), 0.2 * 2.10);
+  EXPECT_NEAR(e4 / e16, std::sqrt((0.25 - 1.0 / r) / (1.0 / 16 - 1.0 / r)), 0.2 * 2.65);
+  // After sss.frames frames the maps are converged: the next frame runs only step 3.
+  sss::FrameTimings t;
+  s.render(0.0, &t);
+  EXPECT_FALSE(std::any_of(t.passes.begin(), t.passes.end(), [](const auto& p) { return p.name == "sss.maps"; }));
+}
+
+// --- Point lights: stereographic correction --------------------------------------------------------
+
+/// Per-pixel variance of one frame's estimate, from two independent frames: Var ≈ mean (a − b)²/2.
+double frameVariance(const std::vector<std::string>& sets) {
+  PresetSession s("candle-holder", sets);
+  const gpu::Image one = s.render();
+  const gpu::Image two = s.render();  // the mean of frames 0 and 1
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+    // Frame 1 alone is 2·two − one.
+    for (int c = 0; c < 3; ++c) {
+      const double second = 2.0 * two.pixels[i][c] - one.pixels[i][c];
+      sum += 0.5 * std::pow(second - one.pixels[i][c], 2.0);
+    }
+    ++n;
+  }
+  return sum / n;
+}
+
+TEST(RadiosityMaps, StereographicCorrectionLowersTheVarianceInsideTheCandleHolder) {
+  // The paper's Fig. 4: a point light surrounded by the object. Planar sampling of the cube-map
+  // G-buffer reaches only the hemisphere around x_o; the stereographic correction (Eqs. 13–14)
+  // reaches the whole cube, and the estimate is less noisy.
+  const std::vector<std::string> common{"render.width=64", "render.height=48", "sss.maps=6", "sss.samples=4",
+                                        "sss.map_size=128", "sss.light_map_size=128", "render.shadows=false"};
+  std::vector<std::string> stereo = common, planar = common;
+  stereo.push_back("sss.stereographic=true");
+  planar.push_back("sss.stereographic=false");
+  const double vs = frameVariance(stereo), vp = frameVariance(planar);
+  std::printf("[ maps ] candle holder: per-frame pixel variance stereographic %.3e, planar %.3e\n", vs, vp);
+  EXPECT_LT(vs, vp);
+}
+
+// --- Coverage, finiteness, limits -----------------------------------------------------------------
+
+TEST(RadiosityMaps, SixteenMapsSeeAlmostEveryVisiblePixelOfTheBunny) {
+  // The paper's guideline (§5): K = 16 covers simple models. Share of the bunny's visible pixels
+  // that no map sees (Algorithm 1's n = 0): at most 0.5%.
+  PresetSession s("bunny", {"render.width=240", "render.height=135", "sss.maps=16", "sss.samples=1",
+                            "sss.map_size=256", "sss.light_map_size=128"});
+  s.render();
+  const sss::MapCoverage c = s.renderer().mapCoverage();
+  std::printf("[ maps ] bunny K=16: %zu of %zu translucent pixels unseen (%.3f%%)\n", c.unseenPixels,
+              c.translucentPixels, 100.0 * c.unseenShare());
+  EXPECT_GT(c.translucentPixels, 1000u);
+  EXPECT_LE(c.unseenShare(), 0.005);
+}
+
+void expectFiniteMaps(PresetSession& s, const std::string& what) {
+  const gpu::Image image = s.render();
+  for (const glm::vec4& p : image.pixels)
+    for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(p[c]) && p[c] >= 0.0f) << what << ": pixel " << p[c];
+  ASSERT_NE(s.renderer().radiosityMaps(), nullptr) << what;
+  for (const glm::vec4& t : readLayers(s.renderer().radiosityMaps()->maps()))
+    for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(t[c])) << what << ": map texel " << t[c];
+}
+
+TEST(RadiosityMaps, NoNanOrInfOnTheHardCases) {
+  const std::vector<std::string> small{"render.width=48", "render.height=32", "sss.maps=4", "sss.samples=4",
+                                       "sss.map_size=64", "sss.light_map_size=128"};
+  const auto with = [&](std::vector<std::string> extra) {
+    extra.insert(extra.begin(), small.begin(), small.end());
+    return extra;
+  };
+  struct Case {
+    std::string preset, what;
+    std::vector<std::string> sets;
+  };
+  const std::vector<Case> cases{
+      {"bunny", "1 cm bunny", with({"scale=0.01"})},
+      {"bunny", "1 m bunny", with({"scale=1"})},
+      {"bunny", "grazing light", with({"light.direction=1,0.001,0"})},
+      {"bunny", "backlit", with({"light.direction=0,-1,0"})},
+      {"bunny", "low albedo (ketchup)", with({"material=Ketchup"})},
+      {"bunny", "photon beam diffusion", with({"sss.model=pbd"})},
+      {"candle-holder", "light inside, planar sampling", with({"sss.stereographic=false"})},
+      {"candle-holder", "light inside", with({})},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    PresetSession s(c.preset, c.sets);
+    expectFiniteMaps(s, c.what);
+  }
+}
+
+TEST(RadiosityMaps, MapsBeyondTheBudgetAreRefusedNamingTheLimit) {
+  test::TempDir dir;
+  const auto r = test::runTallow({"capture", "--preset", "bunny", "--size", "32x32", "--set", "sss.maps=256", "--set",
+                                  "sss.map_size=8192", "--out", (dir.path() / "out").string()});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("sss.maps × sss.map_size²"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("MiB map budget"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+}  // namespace
+}  // namespace tallow
