@@ -165,6 +165,17 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "converged and only the camera pass runs.", 1, 1 << 20),
                               64),
                   [](auto& c) -> auto& { return c.render.sss.frames; }));
+  {
+    Param p = withDefault(declare("sss.gather", "enum", "",
+                                  "How step 2 runs the estimator: fragment (the paper: the maps' texels as fragments "
+                                  "of a layered pass) or compute (a compute pass over the maps' G-buffer; same "
+                                  "inputs and seeds, same result; on llvmpipe about 10x faster, see docs/RESULTS.md)."),
+                          "compute");
+    p.choices = {"fragment", "compute"};
+    p.getter = [](const Config& c) { return json(c.render.sss.computeGather ? "compute" : "fragment"); };
+    p.setter = [](Config& c, const json& v) { c.render.sss.computeGather = v.get<std::string>() == "compute"; };
+    r.add(std::move(p));
+  }
   r.add(bind<bool>(withDefault(declare("sss.stereographic", "bool", "",
                                        "Stereographic correction (Eqs. 13–14) of point-light G-buffer lookups; off: "
                                        "planar sampling (the paper's Fig. 4a)."),

@@ -129,6 +129,10 @@ RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
       mapProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
                              {GL_GEOMETRY_SHADER, "sss/layered.geom"},
                              {GL_FRAGMENT_SHADER, "sss/radiosity_map.frag"}}}),
+      mapGBufferProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
+                                    {GL_GEOMETRY_SHADER, "sss/layered.geom"},
+                                    {GL_FRAGMENT_SHADER, "sss/map_gbuffer.frag"}}}),
+      mapCompute_(shaders, {{{GL_COMPUTE_SHADER, "sss/radiosity_map.comp"}}}),
       dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
       dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
   const float zero[4] = {0, 0, 0, 0};
@@ -164,10 +168,12 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
   if (s.mapSize > maxTexture)
     throw std::invalid_argument("sss.map_size: " + std::to_string(s.mapSize) + " exceeds this GPU's GL_MAX_TEXTURE_SIZE of " +
                                 std::to_string(maxTexture));
-  if (s.lightMapSize > maxTexture || (point > 0 && s.lightMapSize > maxCube))
-    throw std::invalid_argument("sss.light_map_size: " + std::to_string(s.lightMapSize) + " exceeds this GPU's " +
-                                (s.lightMapSize > maxTexture ? "GL_MAX_TEXTURE_SIZE of " + std::to_string(maxTexture)
-                                                             : "GL_MAX_CUBE_MAP_TEXTURE_SIZE of " + std::to_string(maxCube)));
+  if (s.lightMapSize > maxTexture || (point > 0 && s.lightMapSize > maxCube)) {
+    const bool texture = s.lightMapSize > maxTexture;
+    std::string limit = texture ? "GL_MAX_TEXTURE_SIZE of " : "GL_MAX_CUBE_MAP_TEXTURE_SIZE of ";
+    limit += std::to_string(texture ? maxTexture : maxCube);
+    throw std::invalid_argument("sss.light_map_size: " + std::to_string(s.lightMapSize) + " exceeds this GPU's " + limit);
+  }
   if (6 * point > maxLayers)
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
   const std::size_t bytes = mapBytes(s.maps, s.mapSize);
@@ -183,7 +189,7 @@ std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& se
   k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
   const SssSettings& s = settings.sss;
   k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
-    << ',' << s.stereographic << ';';
+    << ',' << s.stereographic << ',' << s.computeGather << ';';
   for (const Light& l : scene.lights)
     k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
       << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
@@ -359,51 +365,8 @@ void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene) const 
   (np > 0 ? pointNormal_ : dummyPoint_).bind(kPointNormalUnit);
 }
 
-void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const RenderSettings& settings) {
   const SssSettings& s = settings.sss;
-  const int k = s.maps, size = s.mapSize;
-  LayeredState state;
-  gpu::Framebuffer fb;
-  fb.attachColor(0, maps_);
-  fb.attachDepth(mapDepth_);
-  fb.setDrawBuffers(1);
-  fb.checkComplete("scattered radiosity maps");
-  glViewport(0, 0, size, size);
-
-  if (frames_ == 0) {
-    views_ = radiosityMapViews(k, sphere_.centre, sphere_.radius);
-    std::vector<glm::mat4> layers;
-    for (const MapView& v : views_) layers.push_back(v.viewProjection);
-    layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
-    const float zero[4] = {0, 0, 0, 0};
-    const float one = 1.0f;
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
-    // Depth pre-pass of the translucent objects into all K layers.
-    fb.bind();
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    depthProgram_.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
-    depthProgram_.set("uLayerBase", 0);
-    for (const DrawItem& item : geometry.items()) {
-      if (slots_[static_cast<std::size_t>(item.objectIndex)] < 0) continue;
-      depthProgram_.set("uModel", item.model);
-      depthProgram_.set("uNormalMatrix", item.normalMatrix);
-      item.draw(k);
-    }
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  }
-
-  // Shading: the estimator once per visible texel, added to the frames before (Algorithm 1 divides by F).
-  fb.bind();
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
-  gpu::Program& p = mapProgram_;
-  p.use();
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
-  p.set("uLayerBase", 0);
   setLightUniforms(p, scene);
   std::vector<glm::vec3> sigmaA(kMaxTranslucentObjects, glm::vec3(0.0f)), sigmaS(kMaxTranslucentObjects, glm::vec3(1.0f)),
       g(kMaxTranslucentObjects, glm::vec3(0.0f));
@@ -425,13 +388,95 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   p.set("uSamples", s.samples);
   p.set("uFrame", frames_);
   p.set("uStereographic", s.stereographic ? 1 : 0);
-  for (const DrawItem& item : geometry.items()) {
-    const int slot = slots_[static_cast<std::size_t>(item.objectIndex)];
-    if (slot < 0) continue;
-    p.set("uModel", item.model);
-    p.set("uNormalMatrix", item.normalMatrix);
-    p.set("uSlot", slot);
-    item.draw(k);
+}
+
+void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+  const SssSettings& s = settings.sss;
+  const int k = s.maps, size = s.mapSize;
+  const bool compute = s.computeGather;
+  LayeredState state;
+  glViewport(0, 0, size, size);
+  const auto drawTranslucent = [&](gpu::Program& program) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
+    program.set("uLayerBase", 0);
+    for (const DrawItem& item : geometry.items()) {
+      const int slot = slots_[static_cast<std::size_t>(item.objectIndex)];
+      if (slot < 0) continue;
+      program.set("uModel", item.model);
+      program.set("uNormalMatrix", item.normalMatrix);
+      program.set("uSlot", slot);
+      item.draw(k);
+    }
+  };
+
+  if (frames_ == 0) {
+    views_ = radiosityMapViews(k, sphere_.centre, sphere_.radius);
+    std::vector<glm::mat4> layers;
+    for (const MapView& v : views_) layers.push_back(v.viewProjection);
+    layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    const float zero[4] = {0, 0, 0, 0};
+    const float one = 1.0f;
+    glClearTexImage(maps_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    gpu::Framebuffer fb;
+    if (compute) {
+      // The maps' G-buffer (x_o, n_o per texel) with depth: the compute gather's input and the
+      // visibility of Algorithm 1.
+      if (!mapPosition_.id() || mapPosition_.width() != size || mapPosition_.depth() != k) {
+        mapPosition_ = colourArray(GL_RGBA32F, size, k);
+        mapNormal_ = colourArray(GL_RGBA32F, size, k);
+      }
+      fb.attachColor(0, mapPosition_);
+      fb.attachColor(1, mapNormal_);
+      fb.attachDepth(mapDepth_);
+      fb.setDrawBuffers(2);
+      fb.checkComplete("scattered radiosity maps' G-buffer");
+      glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
+      glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
+      glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+      fb.bind();
+      mapGBufferProgram_.use();
+      drawTranslucent(mapGBufferProgram_);
+    } else {
+      // Depth pre-pass of the translucent objects into all K layers.
+      fb.attachDepth(mapDepth_);
+      fb.setDrawBuffers(0);
+      fb.checkComplete("scattered radiosity maps' depth");
+      glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+      fb.bind();
+      depthProgram_.use();
+      drawTranslucent(depthProgram_);
+    }
+  }
+
+  if (compute) {
+    gpu::Program& p = mapCompute_;
+    p.use();
+    setGatherUniforms(p, scene, settings);
+    constexpr GLuint kMapPositionUnit = 4, kMapNormalUnit = 5;
+    p.set("uMapPosition", static_cast<int>(kMapPositionUnit));
+    p.set("uMapNormal", static_cast<int>(kMapNormalUnit));
+    mapPosition_.bind(kMapPositionUnit);
+    mapNormal_.bind(kMapNormalUnit);
+    glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    const auto groups = static_cast<GLuint>((size + 7) / 8);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  } else {
+    // Shading: the estimator once per visible texel, added to the frames before (Algorithm 1
+    // divides by F).
+    gpu::Framebuffer fb;
+    fb.attachColor(0, maps_);
+    fb.attachDepth(mapDepth_);
+    fb.setDrawBuffers(1);
+    fb.checkComplete("scattered radiosity maps");
+    fb.bind();
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    mapProgram_.use();
+    setGatherUniforms(mapProgram_, scene, settings);
+    drawTranslucent(mapProgram_);
   }
   ++frames_;
   glGenerateTextureMipmap(maps_.id());
@@ -439,7 +484,8 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
 
 std::size_t RadiosityMaps::bytes() const {
   return dirPosition_.bytes() + dirNormal_.bytes() + dirDepth_.bytes() + pointPosition_.bytes() +
-         pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes();
+         pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes() + mapPosition_.bytes() +
+         mapNormal_.bytes();
 }
 
 }  // namespace tallow::sss

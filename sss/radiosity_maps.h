@@ -27,7 +27,7 @@ namespace tallow::sss {
 
 /// At most this many translucent objects (material slots) and lights of each kind per scene.
 inline constexpr int kMaxTranslucentObjects = 8;
-inline constexpr int kMaxSssDirectionalLights = 8;
+inline constexpr int kMaxSssDirectionalLights = 32;
 inline constexpr int kMaxSssPointLights = 8;
 
 /// One map's camera: direction from the bounding sphere's centre toward the camera, and
@@ -107,11 +107,14 @@ class RadiosityMaps {
   void ensureTargets(const RenderSettings& settings, int dirCount, int pointCount);
   void setLightUniforms(gpu::Program& program, const Scene& scene) const;
 
-  gpu::Program gbufferProgram_, depthProgram_, mapProgram_;
+  void setGatherUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings);
+
+  gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_;
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
   gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
   gpu::Texture maps_, mapDepth_;
+  gpu::Texture mapPosition_, mapNormal_;  ///< the maps' G-buffer (compute gather only)
   gpu::Buffer layerViews_;  ///< std430 mat4 per layer of the pass being drawn
   std::vector<MapView> views_;
   std::vector<glm::mat4> dirMatrices_;  ///< world → [0,1]³ of each directional light's G-buffer

@@ -1,74 +1,18 @@
 #version 450 core
-// Step 2 of the paper (Fig. 3): scattered radiosity B at each texel of the K maps by the Monte
-// Carlo estimator of Eq. 9, N samples per colour band with that band's σ_tr (Eqs. 11–12), looked
-// up in the light G-buffers (§3.2); point lights with the stereographic correction (Eqs. 13–14).
+// Step 2 of the paper (Fig. 3), as the paper does it: the translucent objects rasterised into the K
+// maps (layered), the gather (gather.glsl) once per visible texel after a depth pre-pass.
 // Blended additively: the map holds Σ over the F accumulated frames of B_N (Algorithm 1 divides).
-#include "bssrdf/bssrdf.glsl"
-#include "sss/estimator.glsl"
-#include "sss/lights_gbuffer.glsl"
+#include "sss/gather.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 flat in int vLayer;
 
-const int SSS_MAX_SLOTS = 8;
-uniform int uSlot;                      // this object's translucent slot
-uniform vec3 uSigmaA[SSS_MAX_SLOTS];    // mm⁻¹ per band
-uniform vec3 uSigmaS[SSS_MAX_SLOTS];
-uniform vec3 uG[SSS_MAX_SLOTS];
-uniform float uEta[SSS_MAX_SLOTS];
-uniform int uBssrdfModel;               // BSSRDF_MODEL_*
-uniform int uSamples;                   // N
-uniform int uFrame;                     // frame index of this accumulation (seeds)
-uniform int uStereographic;             // 1: Eqs. 13–14 for point lights
+uniform int uSlot;  // this object's translucent slot
 
 layout(location = 0) out vec4 oRadiosity;  // rgb: B_N [W/m²], a: 1 (counts frames)
 
-const float MM_PER_M = 1000.0;
-
 void main() {
-  vec3 xo = vWorldPosition * MM_PER_M;
-  vec3 no = normalize(vWorldNormal);
-  uvec2 texel = uvec2(gl_FragCoord.xy);
-  vec3 b = vec3(0.0);
-  for (int c = 0; c < 3; ++c) {
-    BssrdfCoefficients k = bssrdfCoefficients(uSigmaA[uSlot][c], uSigmaS[uSlot][c], uG[uSlot][c], uEta[uSlot]);
-    float sigmaTr = sssSamplingSigmaTr(k);
-    float sum = 0.0;
-    // Directional lights: samples on the light's view plane around x_o, looked up orthographically.
-    for (int l = 0; l < uSssDirCount; ++l) {
-      vec3 w = uSssDirDirection[l];
-      float acc = 0.0;
-      for (int j = 0; j < uSamples; ++j) {
-        SssSample s = sssDrawSample(xo, uSssDirTangent[l], uSssDirBitangent[l], sigmaTr, texel.x, texel.y,
-                                    uint(vLayer), uint(uFrame), uint(c), uint(j));
-        GSample g = directionalGBuffer(l, s.xj / MM_PER_M);
-        if (g.tag != uSlot + 1) continue;  // another object or an occluder: x_j is not lit here
-        acc += sssRadiosityTerm(uBssrdfModel, g.position * MM_PER_M, normalize(g.normal), w, xo, no, k, s.weight);
-      }
-      sum += sssRadiosityFromSum(acc, uSssDirIrradiance[l][c], uSamples);
-    }
-    // Point lights: samples on x_o's tangent plane, looked up in the cube G-buffer by direction.
-    for (int l = 0; l < uSssPointCount; ++l) {
-      vec3 xl = uSssPointPosition[l] * MM_PER_M;
-      vec3 t1 = normalize(abs(no.x) < 0.9 ? cross(no, vec3(1, 0, 0)) : cross(no, vec3(0, 1, 0)));
-      vec3 t2 = cross(no, t1);
-      float acc = 0.0;
-      for (int j = 0; j < uSamples; ++j) {
-        SssSample s = sssDrawSample(xo, t1, t2, sigmaTr, texel.x, texel.y, uint(vLayer), uint(uFrame), uint(c), uint(j));
-        vec3 dir = uStereographic != 0 ? sssStereographicLookupDirection(xo, s.xj, xl) : sssPlanarLookupDirection(s.xj, xl);
-        GSample g = pointGBuffer(l, dir);
-        if (g.tag != uSlot + 1) continue;
-        vec3 xi = g.position * MM_PER_M;
-        vec3 toLight = xl - xi;
-        float d2 = dot(toLight, toLight) / (MM_PER_M * MM_PER_M);  // m²: E = I / d²
-        // E = I/d² at x_i varies per sample, so it enters the sum (Eq. 9 with L_ℓ inside).
-        acc += sssRadiosityTerm(uBssrdfModel, xi, normalize(g.normal), normalize(toLight), xo, no, k, s.weight) /
-               max(d2, 1e-12);
-      }
-      sum += sssRadiosityFromSum(acc, uSssPointIntensity[l][c], uSamples);
-    }
-    b[c] = sum;
-  }
+  vec3 b = gatherScatteredRadiosity(vWorldPosition, normalize(vWorldNormal), uvec2(gl_FragCoord.xy), vLayer, uSlot);
   oRadiosity = vec4(b, 1.0);
 }

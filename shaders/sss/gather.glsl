@@ -1,0 +1,67 @@
+// The gather of step 2 (§3.2), shared by the fragment pass (radiosity_map.frag, the paper's) and
+// the compute pass over the maps' G-buffer (radiosity_map.comp): scattered radiosity B at a map
+// texel by the Monte Carlo estimator of Eq. 9, N samples per colour band with that band's σ_tr
+// (Eqs. 11–12), looked up in the light G-buffers; point lights with the stereographic correction
+// (Eqs. 13–14). Both passes call this with the same inputs and seeds, so they agree.
+#include "bssrdf/bssrdf.glsl"
+#include "sss/estimator.glsl"
+#include "sss/lights_gbuffer.glsl"
+
+const int SSS_MAX_SLOTS = 8;
+uniform vec3 uSigmaA[SSS_MAX_SLOTS];    // mm⁻¹ per band
+uniform vec3 uSigmaS[SSS_MAX_SLOTS];
+uniform vec3 uG[SSS_MAX_SLOTS];
+uniform float uEta[SSS_MAX_SLOTS];
+uniform int uBssrdfModel;               // BSSRDF_MODEL_*
+uniform int uSamples;                   // N
+uniform int uFrame;                     // frame index of this accumulation (seeds)
+uniform int uStereographic;             // 1: Eqs. 13–14 for point lights
+
+const float MM_PER_M = 1000.0;
+
+// B_N at one map texel: x_o [m] with unit normal n_o on translucent slot `slot`, texel (x, y) of
+// map `map` (the random streams), all lights, the three colour bands.
+vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int slot) {
+  vec3 xo = xoWorld * MM_PER_M;
+  vec3 b = vec3(0.0);
+  for (int c = 0; c < 3; ++c) {
+    BssrdfCoefficients k = bssrdfCoefficients(uSigmaA[slot][c], uSigmaS[slot][c], uG[slot][c], uEta[slot]);
+    float sigmaTr = sssSamplingSigmaTr(k);
+    float sum = 0.0;
+    // Directional lights: samples on the light's view plane around x_o, looked up orthographically.
+    for (int l = 0; l < uSssDirCount; ++l) {
+      vec3 w = uSssDirDirection[l];
+      float acc = 0.0;
+      for (int j = 0; j < uSamples; ++j) {
+        SssSample s = sssDrawSample(xo, uSssDirTangent[l], uSssDirBitangent[l], sigmaTr, texel.x, texel.y,
+                                    uint(map), uint(uFrame), uint(c), uint(j));
+        GSample g = directionalGBuffer(l, s.xj / MM_PER_M);
+        if (g.tag != slot + 1) continue;  // another object or an occluder: x_j is not lit here
+        acc += sssRadiosityTerm(uBssrdfModel, g.position * MM_PER_M, normalize(g.normal), w, xo, no, k, s.weight);
+      }
+      sum += sssRadiosityFromSum(acc, uSssDirIrradiance[l][c], uSamples);
+    }
+    // Point lights: samples on x_o's tangent plane, looked up in the cube G-buffer by direction.
+    for (int l = 0; l < uSssPointCount; ++l) {
+      vec3 xl = uSssPointPosition[l] * MM_PER_M;
+      vec3 t1 = normalize(abs(no.x) < 0.9 ? cross(no, vec3(1, 0, 0)) : cross(no, vec3(0, 1, 0)));
+      vec3 t2 = cross(no, t1);
+      float acc = 0.0;
+      for (int j = 0; j < uSamples; ++j) {
+        SssSample s = sssDrawSample(xo, t1, t2, sigmaTr, texel.x, texel.y, uint(map), uint(uFrame), uint(c), uint(j));
+        vec3 dir = uStereographic != 0 ? sssStereographicLookupDirection(xo, s.xj, xl) : sssPlanarLookupDirection(s.xj, xl);
+        GSample g = pointGBuffer(l, dir);
+        if (g.tag != slot + 1) continue;
+        vec3 xi = g.position * MM_PER_M;
+        vec3 toLight = xl - xi;
+        float d2 = dot(toLight, toLight) / (MM_PER_M * MM_PER_M);  // m²: E = I / d²
+        // E = I/d² at x_i varies per sample, so it enters the sum (Eq. 9 with L_ℓ inside).
+        acc += sssRadiosityTerm(uBssrdfModel, xi, normalize(g.normal), normalize(toLight), xo, no, k, s.weight) /
+               max(d2, 1e-12);
+      }
+      sum += sssRadiosityFromSum(acc, uSssPointIntensity[l][c], uSamples);
+    }
+    b[c] = sum;
+  }
+  return b;
+}
