@@ -84,14 +84,30 @@ int runCapture(const CaptureOptions& options) {
   if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
     const sss::MapCoverage coverage = renderer.mapCoverage();
     nlohmann::json pearling = nlohmann::json::array();
-    for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, config.render.sss.lightMapSize)) {
+    for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, maps->lightMapSize())) {
       pearling.push_back({{"object", w.object}, {"band", w.band}, {"mean_free_path_mm", w.meanFreePathMm},
                           {"light_texel_mm", w.texelMm}});
       std::fprintf(stderr, "tallow: warning: pearling on %s (band %d): 1/sigma_tr = %.3g mm is below the light "
                            "G-buffer texel of %.3g mm; raise sss.light_map_size\n",
                    w.object.c_str(), w.band, w.meanFreePathMm, w.texelMm);
     }
+    // A point light inside a translucent object's bounds with planar sampling: the paper's Fig. 4a
+    // noise; allowed (it is how the comparison is made) but said.
+    nlohmann::json warnings = nlohmann::json::array();
+    if (!config.render.sss.stereographic)
+      for (const sss::Light& l : config.scene.lights) {
+        if (l.kind != sss::LightKind::Point) continue;
+        const glm::vec3 c = maps->sphere().centre;
+        if (glm::length(l.position - c) < maps->sphere().radius) {
+          const std::string w = "a point light lies inside the translucent objects' bounds with sss.stereographic off: "
+                                "planar sampling of its cube G-buffer is noisy there (the paper's Fig. 4a)";
+          warnings.push_back(w);
+          std::fprintf(stderr, "tallow: warning: %s\n", w.c_str());
+        }
+      }
     run.sss = {{"map_bytes", maps->bytes()},
+               {"warnings", warnings},
+               {"light_map_size", maps->lightMapSize()},
                {"frames_accumulated", maps->frames()},
                {"translucent_pixels", coverage.translucentPixels},
                {"unseen_pixels", coverage.unseenPixels},

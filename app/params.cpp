@@ -165,6 +165,12 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "converged and only the camera pass runs.", 1, 1 << 20),
                               64),
                   [](auto& c) -> auto& { return c.render.sss.frames; }));
+  r.add(bind<bool>(withDefault(declare("sss.light_map_auto", "bool", "",
+                                       "Raise the light G-buffer size above sss.light_map_size (to a power of two, at "
+                                       "most the GPU's texture limit and 8192) until a texel is no larger than the "
+                                       "shortest mean free path 1/σ_tr, against pearling (the paper's §5)."),
+                               false),
+                   [](auto& c) -> auto& { return c.render.sss.lightMapAuto; }));
   {
     Param p = withDefault(declare("sss.gather", "enum", "",
                                   "How step 2 runs the estimator: fragment (the paper: the maps' texels as fragments "

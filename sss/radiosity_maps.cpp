@@ -119,6 +119,21 @@ std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRa
   return out;
 }
 
+int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize) {
+  int size = settings.sss.lightMapSize;
+  if (!settings.sss.lightMapAuto) return size;
+  double shortest = 1e300;  // mm
+  for (const SceneObject& o : scene.objects)
+    if (o.translucent)
+      for (int c = 0; c < 3; ++c)
+        shortest = std::min(shortest, 1.0 / samplingSigmaTr(o.material.sigma_a[c], o.material.sigma_s[c],
+                                                            o.material.g[c], o.material.eta));
+  const double diameterMm = 2.0 * static_cast<double>(sphereRadius) * 1000.0;
+  const int cap = std::min(maxSize, 8192);
+  while (size < cap && diameterMm / size > shortest) size *= 2;
+  return std::min(size, cap);
+}
+
 RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
     : gbufferProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
                                  {GL_GEOMETRY_SHADER, "sss/layered.geom"},
@@ -189,7 +204,7 @@ std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& se
   k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
   const SssSettings& s = settings.sss;
   k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
-    << ',' << s.stereographic << ',' << s.computeGather << ';';
+    << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ';';
   for (const Light& l : scene.lights)
     k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
       << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
@@ -211,7 +226,7 @@ bool RadiosityMaps::needsUpdate(const std::string& stateKey, const RenderSetting
 }
 
 void RadiosityMaps::ensureTargets(const RenderSettings& settings, int dirCount, int pointCount) {
-  const int lightSize = settings.sss.lightMapSize;
+  const int lightSize = lightMapSize_;
   if (dirCount > 0 && (!dirPosition_.id() || dirPosition_.width() != lightSize || dirPosition_.depth() != dirCount)) {
     dirPosition_ = colourArray(GL_RGBA32F, lightSize, dirCount);
     dirNormal_ = colourArray(GL_RGBA32F, lightSize, dirCount);
@@ -245,6 +260,10 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].translucent) slots_[i] = slot++;
   sphere_ = translucentBounds(scene, geometry);
+  GLint maxTexture = 0, maxCube = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  lightMapSize_ = effectiveLightMapSize(scene, settings, sphere_.radius, std::min(maxTexture, maxCube));
 
   std::vector<int> dirLights, pointLights;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
@@ -254,7 +273,7 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
 
   // Layer matrices: directional views fitted to the translucent objects (depth over the whole
   // scene, so occluders between the light and the object are in front), then point-light cubes.
-  const int size = settings.sss.lightMapSize;
+  const int size = lightMapSize_;
   geometry::Aabb translucentBox;
   translucentBox.extend(sphere_.centre - glm::vec3(sphere_.radius));
   translucentBox.extend(sphere_.centre + glm::vec3(sphere_.radius));

@@ -60,6 +60,10 @@ struct PearlingWarning {
   double texelMm = 0.0;         ///< world size of one directional light G-buffer texel
 };
 std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRadius, int lightMapSize);
+/// The light G-buffer size the renderer uses: sss.light_map_size, or with sss.light_map_auto the
+/// smallest power of two at least that large whose texel is ≤ the shortest 1/σ_tr of the
+/// translucent objects, capped at `maxSize`.
+int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize);
 
 class RadiosityMaps {
  public:
@@ -84,6 +88,7 @@ class RadiosityMaps {
   void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
 
   int frames() const { return frames_; }   ///< F, frames accumulated in the maps
+  int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
   const std::vector<MapView>& views() const { return views_; }
   BoundingSphere sphere() const { return sphere_; }
   /// The maps (RGBA32F 2D array with mipmaps: Σ of B_N over F frames) and their depth (2D array).
@@ -123,6 +128,7 @@ class RadiosityMaps {
   BoundingSphere sphere_;
   std::string key_;
   int frames_ = 0;
+  int lightMapSize_ = 0;
 };
 
 }  // namespace tallow::sss

@@ -24,6 +24,7 @@ struct SssSettings {
   float comb = 0.0f;          ///< sss.comb: ε_comb [× the translucent objects' bounding radius]
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
+  bool lightMapAuto = false;  ///< sss.light_map_auto: raise the light map size against pearling
   bool computeGather = true;  ///< sss.gather: false = the paper's fragment pass, true = compute pass
 };
 

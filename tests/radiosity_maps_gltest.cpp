@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -289,6 +291,44 @@ TEST(RadiosityMaps, NoNanOrInfOnTheHardCases) {
     PresetSession s(c.preset, c.sets);
     expectFiniteMaps(s, c.what);
   }
+}
+
+nlohmann::json captureStats(const test::TempDir& dir, const std::vector<std::string>& extra, std::string* err = nullptr) {
+  std::vector<std::string> args{"capture", "--preset", "bunny", "--size", "48x32", "--set", "sss.maps=2",
+                                "--set", "sss.samples=1", "--set", "sss.map_size=32", "--out", (dir.path() / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const auto r = test::runTallow(args);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  if (err) *err = r.err;
+  std::ifstream in(dir.path() / "out" / "stats.json");
+  return nlohmann::json::parse(in);
+}
+
+TEST(RadiosityMaps, PearlingIsReportedAndAutoModeRaisesTheLightMap) {
+  // Ketchup's green band has 1/σ_tr = 0.58 mm (σ_a = 0.97, σ_s' = 0.07 mm⁻¹, Eq. 10); a 64² light
+  // G-buffer over the 0.1 m bunny's bounding sphere (diameter ≈ 0.16 m) has 2.5 mm texels.
+  test::TempDir a, b;
+  std::string err;
+  const auto low = captureStats(a, {"--set", "material=Ketchup", "--set", "sss.light_map_size=64"}, &err);
+  ASSERT_TRUE(low["sss"]["pearling"].is_array());
+  EXPECT_GE(low["sss"]["pearling"].size(), 2u);
+  EXPECT_NE(err.find("pearling"), std::string::npos);
+  const auto raised = captureStats(b, {"--set", "material=Ketchup", "--set", "sss.light_map_size=64", "--set",
+                                       "sss.light_map_auto=true"});
+  EXPECT_TRUE(raised["sss"]["pearling"].empty());
+  const int size = raised["sss"]["light_map_size"].get<int>();
+  const double texelMm = low["sss"]["pearling"][0]["light_texel_mm"].get<double>() * 64.0 / size;
+  EXPECT_LE(texelMm, 0.394 * 1.0001);       // the shortest 1/σ_tr (blue band)
+  EXPECT_GT(texelMm * 2.0, 0.394);          // and the smallest power of two that does it
+}
+
+TEST(RadiosityMaps, PointLightInsideWithPlanarSamplingIsAWarningNotAnError) {
+  test::TempDir dir;
+  const auto r = test::runTallow({"capture", "--preset", "candle-holder", "--size", "48x32", "--set", "sss.maps=2",
+                                  "--set", "sss.samples=1", "--set", "sss.map_size=32", "--set",
+                                  "sss.stereographic=false", "--out", (dir.path() / "out").string()});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: a point light lies inside"), std::string::npos) << r.err;
 }
 
 TEST(RadiosityMaps, MapsBeyondTheBudgetAreRefusedNamingTheLimit) {
