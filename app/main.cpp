@@ -9,6 +9,7 @@
 #include "app/extraction_bench_command.h"
 #include "app/field_command.h"
 #include "app/input_error.h"
+#include "app/maps_bench_command.h"
 #include "app/mesh_command.h"
 #include "app/params.h"
 #include "app/probe_command.h"
@@ -113,6 +114,20 @@ int main(int argc, char** argv) {
   extractionCmd->add_option("--gl", extraction.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
   extractionCmd->add_option("--out", extraction.out, "JSON file")->required();
 
+  tallow::app::ProbeMapsOptions mapsBench;
+  auto* mapsBenchCmd = probeCmd->add_subcommand("maps", "cost of the scattered radiosity maps against K and N");
+  mapsBenchCmd->add_option("--preset", mapsBench.scene.preset, "preset name in presets/ or a path to a JSON file");
+  mapsBenchCmd->add_option("--set", mapsBench.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
+  mapsBenchCmd->add_option("--size", mapsBench.scene.size, "image size WIDTHxHEIGHT");
+  mapsBenchCmd->add_option("--shader-dir", mapsBench.scene.shaderDir, "read shaders from this folder instead of the embedded copy");
+  mapsBenchCmd->add_option("--k", mapsBench.maps, "numbers of maps K (sss.maps), e.g. 4,8,16,32")->delimiter(',');
+  mapsBenchCmd->add_option("--n", mapsBench.samples, "samples per texel N (sss.samples), e.g. 1,4,16")->delimiter(',');
+  mapsBenchCmd->add_option("--map-size", mapsBench.mapSize, "sss.map_size (default: the preset's)");
+  mapsBenchCmd->add_option("--repeats", mapsBench.repeats, "timed frames after one warm-up; the median is reported");
+  mapsBenchCmd->add_option("--gather", mapsBench.gather, "sss.gather (default: the preset's)");
+  mapsBenchCmd->add_option("--gl", mapsBench.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+  mapsBenchCmd->add_option("--out", mapsBench.out, "JSON file")->required();
+
   tallow::app::MeshOptions mesh;
   auto* meshCmd = app.add_subcommand("mesh", "write the triangles of the preset's field objects at time T as a PLY (world units)");
   meshCmd->add_option("--preset", mesh.scene.preset, "preset name in presets/ or a path to a JSON file");
@@ -149,6 +164,7 @@ int main(int argc, char** argv) {
     if (*profileCmd) return tallow::app::runProbeProfile(profile);
     if (*costCmd) return tallow::app::runProbeCost(cost);
     if (*extractionCmd) return tallow::app::runProbeExtraction(extraction);
+    if (*mapsBenchCmd) return tallow::app::runProbeMaps(mapsBench);
     if (*meshCmd) return tallow::app::runMesh(mesh);
     if (*fieldCmd) return tallow::app::runField(field);
     return tallow::app::runView(view);
