@@ -45,8 +45,8 @@ constexpr Range kAnisotropy{-1e6, 1e6};            ///< g; |g| < 1 checked by va
 constexpr Range kEta{-1e6, 1e6};                   ///< η > 0 checked by validateMaterial
 constexpr float kDefaultEta = 1.3f;                ///< as most rows of materials.csv
 
-const std::vector<std::string> kTopKeys = {"name",    "description", "camera",    "lights", "objects",
-                                           "ambient", "background",  "animation", "settings"};
+const std::vector<std::string> kTopKeys = {"name",    "description", "camera",    "lights",   "objects",
+                                           "ambient", "background",  "animation", "settings", "environment"};
 const std::vector<std::string> kCameraKeys = {"type", "position", "target", "up", "fov_deg", "height"};
 const std::vector<std::string> kDirectionalKeys = {"type", "direction", "irradiance", "shadows"};
 const std::vector<std::string> kPointKeys = {"type", "position", "follow", "intensity", "shadows"};
@@ -90,6 +90,7 @@ class PresetReader {
     if (at(objects).empty()) doc_.fail(objects, "objects: a preset needs at least one object");
     for (std::size_t i = 0; i < at(objects).size(); ++i) scene.objects.push_back(readObject(objects / i));
     if (has(root, "lights")) resolveFollows(root / "lights", scene);
+    if (has(root, "environment")) scene.environment = readEnvironment(root / "environment");
     scene.ambient = optVec3(root, "ambient", paramRange("ambient")).value_or(glm::vec3(0.0f));
     scene.background = optVec3(root, "background", paramRange("ambient")).value_or(glm::vec3(0.0f));
     if (has(root, "animation")) {
@@ -251,6 +252,47 @@ class PresetReader {
     }
     light.castsShadows = optBool(p, "shadows").value_or(true);
     return light;
+  }
+
+  /// "environment": {"file": "data:env.hdr", "lights": 16, "rotation_deg": 0, "intensity": 1}, a
+  /// Radiance .hdr lat-long map turned into directional lights by app/setup.cpp (see
+  /// sss/environment_lights.h). The file must exist (checked here); its content is read at load.
+  sss::Environment readEnvironment(const Ptr& p) const {
+    static const std::vector<std::string> kEnvironmentKeys = {"file", "lights", "rotation_deg", "intensity"};
+    checkKeys(p, kEnvironmentKeys, "the environment");
+    sss::Environment env;
+    const Ptr file = require(p, "file");
+    if (!at(file).is_string()) doc_.fail(file, "file: expected a string (a Radiance .hdr file name)");
+    const std::string text = at(file).get<std::string>();
+    constexpr std::string_view kDataPrefix = "data:";
+    fs::path path;
+    if (text.rfind(kDataPrefix, 0) == 0) {
+      path = fs::path(text.substr(kDataPrefix.size()));
+      if (path.empty() || path.is_absolute()) doc_.fail(file, "file: \"data:\" needs a file name relative to the data folder");
+      path = dataDir_ / path;
+    } else {
+      path = fs::path(text);
+      if (path.empty()) doc_.fail(file, "file: empty file name");
+      if (path.is_relative()) path = presetDir_ / path;
+    }
+    env.file = fs::absolute(path).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(env.file, ec)) doc_.fail(file, "file: no such file " + quote(env.file.string()));
+    if (has(p, "lights")) {
+      const Ptr lights = p / "lights";
+      constexpr int kMaxLights = 32;  // the renderer's limit of directional lights
+      const json& v = at(lights);
+      if (!v.is_number_integer()) doc_.fail(lights, "lights: expected an integer");
+      const bool inRange = v.is_number_unsigned() ? v.get<std::uint64_t>() >= 1 && v.get<std::uint64_t>() <= kMaxLights
+                                                  : v.get<std::int64_t>() >= 1 && v.get<std::int64_t>() <= kMaxLights;
+      if (!inRange)
+        doc_.fail(lights, "lights: " + formatNumber(v.get<double>()) + " is out of range [1, " + std::to_string(kMaxLights) + "]");
+      env.lights = v.get<int>();
+    }
+    env.rotationDeg = optNumber(p, "rotation_deg", kAngleDeg).value_or(0.0f);
+    const Range intensity = paramRange("light.intensity");
+    env.scale = optNumber(p, "intensity", intensity).value_or(1.0f);
+    return env;
   }
 
   /// "follow": "<name>" of point lights → the index of that object, which must be a candle field.

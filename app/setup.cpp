@@ -6,6 +6,7 @@
 #include "app/input_error.h"
 #include "app/params.h"
 #include "app/preset.h"
+#include "sss/environment_lights.h"
 
 namespace tallow::app {
 
@@ -49,6 +50,14 @@ LoadedScene loadScene(const SceneOptions& options) {
   out.presetName = options.preset.empty() ? defaultPresetName() : options.preset;
   out.presetPath = resolvePresetName(out.presetName, presetDir());
   out.config = loadPreset(out.presetPath, materials, data);
+  // The preset's environment map becomes directional lights after the preset's own lights.
+  if (const std::optional<sss::Environment>& env = out.config.scene.environment) {
+    try {
+      for (const sss::Light& l : sss::environmentLights(*env)) out.config.scene.lights.push_back(l);
+    } catch (const std::exception& e) {
+      throw InputError(out.presetPath.string() + ": environment: " + e.what());
+    }
+  }
   const Registry& registry = parameterRegistry(materials);
   if (!options.size.empty()) {
     const auto [w, h] = parseSize(options.size);

@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,12 +75,22 @@ struct Camera {
   float orthoHeight = 1.0f;   ///< orthographic: height of the view in metres
 };
 
+/// An environment map lighting the scene as M directional lights (preset key "environment";
+/// sss/environment_lights.h has the mapping convention and the sampling).
+struct Environment {
+  std::filesystem::path file;  ///< Radiance .hdr, lat-long; absolute once loaded
+  int lights = 16;             ///< M, the number of directional lights it becomes
+  float rotationDeg = 0;       ///< turn about +y, counter-clockwise seen from above
+  float scale = 1;             ///< multiplies the map's radiance (preset key "intensity")
+};
+
 struct Scene {
   std::string name;
   std::string description;
   std::filesystem::path sourcePath;  ///< the preset file it came from, if any
   std::vector<SceneObject> objects;
   std::vector<Light> lights;
+  std::optional<Environment> environment;
   Camera camera;
   glm::vec3 ambient{0.0f};     ///< uniform sky radiance [W/(m²·sr)] lighting opaque surfaces
   glm::vec3 background{0.0f};  ///< radiance of pixels that hit nothing

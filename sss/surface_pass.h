@@ -12,7 +12,7 @@
 namespace tallow::sss {
 
 /// Upper bounds of the shader's light arrays (shaders/common/lights.glsl).
-constexpr int kMaxDirectionalLights = 8;
+constexpr int kMaxDirectionalLights = 32;
 constexpr int kMaxPointLights = 8;
 
 class SurfacePass {

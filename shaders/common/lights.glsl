@@ -1,5 +1,5 @@
 // Light and shadow uniforms shared by the passes that shade opaque surfaces.
-const int MAX_DIRECTIONAL_LIGHTS = 8;
+const int MAX_DIRECTIONAL_LIGHTS = 32;
 const int MAX_POINT_LIGHTS = 8;
 
 uniform int uDirCount;

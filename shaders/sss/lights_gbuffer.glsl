@@ -1,5 +1,5 @@
 // The lights as the radiosity-map passes see them: their G-buffers (step 1) and parameters.
-const int SSS_MAX_DIRECTIONAL = 8;
+const int SSS_MAX_DIRECTIONAL = 32;
 const int SSS_MAX_POINT = 8;
 
 uniform int uSssDirCount;
