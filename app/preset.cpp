@@ -46,7 +46,8 @@ constexpr Range kEta{-1e6, 1e6};                   ///< η > 0 checked by valida
 constexpr float kDefaultEta = 1.3f;                ///< as most rows of materials.csv
 
 const std::vector<std::string> kTopKeys = {"name",    "description", "camera",    "lights",   "objects",
-                                           "ambient", "background",  "animation", "settings", "environment"};
+                                           "ambient", "background",  "animation", "settings", "environment",
+                                           "map_directions"};
 const std::vector<std::string> kCameraKeys = {"type", "position", "target", "up", "fov_deg", "height"};
 const std::vector<std::string> kDirectionalKeys = {"type", "direction", "irradiance", "shadows"};
 const std::vector<std::string> kPointKeys = {"type", "position", "follow", "intensity", "shadows"};
@@ -91,6 +92,14 @@ class PresetReader {
     for (std::size_t i = 0; i < at(objects).size(); ++i) scene.objects.push_back(readObject(objects / i));
     if (has(root, "lights")) resolveFollows(root / "lights", scene);
     if (has(root, "environment")) scene.environment = readEnvironment(root / "environment");
+    if (has(root, "map_directions")) {
+      // The radiosity maps' camera directions, instead of Halton's (the paper, §3.2).
+      const Ptr list = root / "map_directions";
+      expectArray(list);
+      if (at(list).empty() || at(list).size() > 256)
+        doc_.fail(list, "map_directions: expected 1 to 256 directions");
+      for (std::size_t i = 0; i < at(list).size(); ++i) scene.mapDirections.push_back(direction(list / i, "map_directions"));
+    }
     scene.ambient = optVec3(root, "ambient", paramRange("ambient")).value_or(glm::vec3(0.0f));
     scene.background = optVec3(root, "background", paramRange("ambient")).value_or(glm::vec3(0.0f));
     if (has(root, "animation")) {

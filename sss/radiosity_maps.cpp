@@ -73,12 +73,12 @@ gpu::Texture cubeArray(GLenum format, int size, int cubes) {
 
 }  // namespace
 
-std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius) {
+std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions, const glm::vec3& centre, float radius) {
   std::vector<MapView> views;
   const float r = std::max(radius, 1e-6f);
-  for (int i = 0; i < k; ++i) {
+  for (const glm::vec3& d : directions) {
     MapView v;
-    v.direction = glm::vec3(haltonDirection<double>(static_cast<std::uint32_t>(i)));
+    v.direction = glm::normalize(d);
     const glm::vec3 eye = centre + v.direction * (2.0f * r);
     const glm::vec3 up = std::abs(v.direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     const glm::mat4 view = glm::lookAt(eye, centre, up);
@@ -88,6 +88,16 @@ std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float rad
     views.push_back(v);
   }
   return views;
+}
+
+std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius) {
+  std::vector<glm::vec3> directions;
+  for (int i = 0; i < k; ++i) directions.emplace_back(haltonDirection<double>(static_cast<std::uint32_t>(i)));
+  return radiosityMapViews(directions, centre, radius);
+}
+
+int mapCount(const Scene& scene, const RenderSettings& settings) {
+  return scene.mapDirections.empty() ? settings.sss.maps : static_cast<int>(scene.mapDirections.size());
 }
 
 BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geometry) {
@@ -177,8 +187,9 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
-  if (s.maps > maxLayers)
-    throw std::invalid_argument("sss.maps: " + std::to_string(s.maps) + " maps exceed this GPU's "
+  const int k = mapCount(scene, settings);
+  if (k > maxLayers)
+    throw std::invalid_argument("sss.maps: " + std::to_string(k) + " maps exceed this GPU's "
                                 "GL_MAX_ARRAY_TEXTURE_LAYERS of " + std::to_string(maxLayers));
   if (s.mapSize > maxTexture)
     throw std::invalid_argument("sss.map_size: " + std::to_string(s.mapSize) + " exceeds this GPU's GL_MAX_TEXTURE_SIZE of " +
@@ -191,9 +202,9 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
   }
   if (6 * point > maxLayers)
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
-  const std::size_t bytes = mapBytes(s.maps, s.mapSize);
+  const std::size_t bytes = mapBytes(k, s.mapSize);
   if (bytes > kMapMemoryBudget)
-    throw std::invalid_argument("sss.maps × sss.map_size²: " + std::to_string(s.maps) + " maps of " +
+    throw std::invalid_argument("sss.maps × sss.map_size²: " + std::to_string(k) + " maps of " +
                                 std::to_string(s.mapSize) + "² need " + std::to_string(bytes >> 20) +
                                 " MiB, over the " + std::to_string(kMapMemoryBudget >> 20) + " MiB map budget");
 }
@@ -205,6 +216,7 @@ std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& se
   const SssSettings& s = settings.sss;
   k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
     << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ';';
+  for (const glm::vec3& d : scene.mapDirections) k << d.x << ',' << d.y << ',' << d.z << ';';
   for (const Light& l : scene.lights)
     k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
       << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
@@ -225,7 +237,7 @@ bool RadiosityMaps::needsUpdate(const std::string& stateKey, const RenderSetting
   return stateKey != key_ || frames_ < settings.sss.frames;
 }
 
-void RadiosityMaps::ensureTargets(const RenderSettings& settings, int dirCount, int pointCount) {
+void RadiosityMaps::ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount) {
   const int lightSize = lightMapSize_;
   if (dirCount > 0 && (!dirPosition_.id() || dirPosition_.width() != lightSize || dirPosition_.depth() != dirCount)) {
     dirPosition_ = colourArray(GL_RGBA32F, lightSize, dirCount);
@@ -238,7 +250,7 @@ void RadiosityMaps::ensureTargets(const RenderSettings& settings, int dirCount, 
     pointNormal_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
     pointDepth_ = gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, lightSize, pointCount);
   }
-  const int k = settings.sss.maps, size = settings.sss.mapSize;
+  const int size = settings.sss.mapSize;
   if (!maps_.id() || maps_.width() != size || maps_.depth() != k) {
     maps_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
     mapDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, k);
@@ -268,7 +280,7 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   std::vector<int> dirLights, pointLights;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
     (scene.lights[i].kind == LightKind::Directional ? dirLights : pointLights).push_back(static_cast<int>(i));
-  ensureTargets(settings, static_cast<int>(dirLights.size()), static_cast<int>(pointLights.size()));
+  ensureTargets(settings, mapCount(scene, settings), static_cast<int>(dirLights.size()), static_cast<int>(pointLights.size()));
   if (frames_ > 0) return;  // light and geometry unchanged: the G-buffers of the first frame hold
 
   // Layer matrices: directional views fitted to the translucent objects (depth over the whole
@@ -411,7 +423,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
 
 void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
   const SssSettings& s = settings.sss;
-  const int k = s.maps, size = s.mapSize;
+  const int k = mapCount(scene, settings), size = s.mapSize;
   const bool compute = s.computeGather;
   LayeredState state;
   glViewport(0, 0, size, size);
@@ -429,7 +441,8 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   };
 
   if (frames_ == 0) {
-    views_ = radiosityMapViews(k, sphere_.centre, sphere_.radius);
+    views_ = scene.mapDirections.empty() ? radiosityMapViews(k, sphere_.centre, sphere_.radius)
+                                         : radiosityMapViews(scene.mapDirections, sphere_.centre, sphere_.radius);
     std::vector<glm::mat4> layers;
     for (const MapView& v : views_) layers.push_back(v.viewProjection);
     layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());

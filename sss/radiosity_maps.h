@@ -42,6 +42,10 @@ struct MapView {
 /// bases 2 and 3 of k + 1, area-uniform on the sphere, as the paper's §3.2), orthographic, the
 /// frustum enclosing the sphere.
 std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius);
+/// The same for listed directions (unit, from the centre toward each camera).
+std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions, const glm::vec3& centre, float radius);
+/// K of a frame: the scene's listed map directions, else sss.maps.
+int mapCount(const Scene& scene, const RenderSettings& settings);
 
 /// The translucent objects' bounding sphere in world units (centre, radius); radius 0 when none.
 struct BoundingSphere {
@@ -109,7 +113,7 @@ class RadiosityMaps {
   static std::string stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS);
 
  private:
-  void ensureTargets(const RenderSettings& settings, int dirCount, int pointCount);
+  void ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount);
   void setLightUniforms(gpu::Program& program, const Scene& scene) const;
 
   void setGatherUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings);

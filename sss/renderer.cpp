@@ -68,7 +68,9 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
     passes.push_back({"sss.light_gbuffer", std::to_string(dir) + " directional (orthographic layer) and " +
                                                std::to_string(point) + " point (cube) light G-buffer(s), " +
                                                std::to_string(s.lightMapSize) + "^2, one layered pass each kind"});
-    passes.push_back({"sss.maps", std::to_string(s.maps) + " scattered radiosity maps of " + std::to_string(s.mapSize) +
+    passes.push_back({"sss.maps", std::to_string(mapCount(scene, settings)) +
+                                      (scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") +
+                                      " scattered radiosity maps of " + std::to_string(s.mapSize) +
                                       "^2: depth pre-pass, then " + std::to_string(s.samples) +
                                       " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
                                       " dipole), accumulated until " + std::to_string(s.frames) + " frames"});

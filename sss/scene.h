@@ -91,6 +91,9 @@ struct Scene {
   std::vector<SceneObject> objects;
   std::vector<Light> lights;
   std::optional<Environment> environment;
+  /// Directions of the scattered radiosity maps' cameras (unit, from the objects toward the
+  /// camera), preset key "map_directions"; empty: K Halton directions (sss.maps).
+  std::vector<glm::vec3> mapDirections;
   Camera camera;
   glm::vec3 ambient{0.0f};     ///< uniform sky radiance [W/(m²·sr)] lighting opaque surfaces
   glm::vec3 background{0.0f};  ///< radiance of pixels that hit nothing

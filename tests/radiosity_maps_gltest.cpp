@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -329,6 +330,28 @@ TEST(RadiosityMaps, PointLightInsideWithPlanarSamplingIsAWarningNotAnError) {
                                   "sss.stereographic=false", "--out", (dir.path() / "out").string()});
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("warning: a point light lies inside"), std::string::npos) << r.err;
+}
+
+TEST(RadiosityMaps, MapDirectionsListedInThePresetReplaceHalton) {
+  // "map_directions" in a preset: the maps look from exactly those directions (normalised), K is
+  // their count whatever sss.maps says, and an empty list is refused with file:line:col.
+  test::TempDir dir;
+  std::ifstream in(std::string(TALLOW_TEST_SOURCE_DIR) + "/presets/slab.json");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = json.rfind('}');
+  const auto listed = dir.write("listed.json", json.substr(0, at) + ", \"map_directions\": [[0, 2, 0], [1, 1, 0]]}\n");
+  PresetSession s(listed.string(), {"render.width=16", "render.height=16", "sss.maps=9", "sss.samples=1",
+                                    "sss.map_size=32", "sss.light_map_size=64"});
+  s.render();
+  const auto& views = s.renderer().radiosityMaps()->views();
+  ASSERT_EQ(views.size(), 2u);
+  EXPECT_NEAR(glm::distance(views[0].direction, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(views[1].direction, glm::normalize(glm::vec3(1, 1, 0))), 0.0f, 1e-6f);
+  EXPECT_EQ(s.renderer().radiosityMaps()->maps().depth(), 2);
+  const auto empty = dir.write("empty.json", json.substr(0, at) + ", \"map_directions\": []}\n");
+  const auto r = test::runTallow({"capture", "--preset", empty.string(), "--out", (dir.path() / "o").string()});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("map_directions: expected 1 to 256 directions"), std::string::npos) << r.err;
 }
 
 TEST(RadiosityMaps, MapsBeyondTheBudgetAreRefusedNamingTheLimit) {
