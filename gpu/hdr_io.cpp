@@ -150,7 +150,11 @@ class HdrDecoder {
       if (end > i) words.push_back(res.substr(i, end - i));
       i = end + 1;
     }
-    const std::string shown = "\"" + printable(res) + "\" at byte " + std::to_string(resStart);
+    // Built piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+    std::string shown = "\"";
+    shown += printable(res);
+    shown += "\" at byte ";
+    shown += std::to_string(resStart);
     if (words.size() != 4 || words[0].size() != 2 || words[2].size() != 2 ||
         (words[0][0] != '-' && words[0][0] != '+') || (words[2][0] != '-' && words[2][0] != '+'))
       fail(name_, "bad resolution line " + shown + " (expected \"-Y height +X width\")");

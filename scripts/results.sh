@@ -20,10 +20,19 @@ echo "results: tallow probe extraction (blob, candle; 64, 128, 256; $repeats rep
 "$tallow" probe extraction --fields blob,candle --res 64,128,256 --repeats "$repeats" --out "$work/extraction.json"
 echo "results: tallow probe maps (bunny; K 4, 8, 16; N 1, 4, 8; 256² maps; $maps_repeats repeats)"
 "$tallow" probe maps --preset bunny --k 4,8,16 --n 1,4,8 --map-size 256 --repeats "$maps_repeats" --out "$work/maps.json"
+for gather in fragment compute; do
+  echo "results: tallow probe maps (bunny; K 8, N 4; 256² maps; sss.gather=$gather)"
+  "$tallow" probe maps --preset bunny --k 8 --n 4 --map-size 256 --repeats "$maps_repeats" --gather "$gather" \
+    --out "$work/gather_$gather.json"
+done
 
-python3 - "$work/extraction.json" "$root/docs/RESULTS.md.tmp" "$repeats" "$(nproc 2>/dev/null || echo '?')" "$work/maps.json" <<'PY'
+python3 - "$work/extraction.json" "$root/docs/RESULTS.md.tmp" "$repeats" "$(nproc 2>/dev/null || echo '?')" "$work/maps.json" "$work/gather_fragment.json" "$work/gather_compute.json" <<'PY'
 import json, sys, datetime, platform
 src, dst, repeats, cores, maps_src = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
+gathers = {}
+for name, path in (("fragment", sys.argv[6]), ("compute", sys.argv[7])):
+    with open(path) as f:
+        gathers[name] = json.load(f)["rows"][0]
 with open(src) as f:
     r = json.load(f)
 with open(maps_src) as f:
@@ -152,6 +161,19 @@ add("- time = a + c·K + b·K·N: a = %.3f ms, c = %.3f ms per map, b = %.4f ms 
     fkn["intercept_ms"], fkn["per_map_ms"], fkn["per_sample_ms"], fkn["r2"]))
 add("")
 add("Rerun: `tallow probe maps --preset bunny --k 4,8,16 --n 1,4,8 --map-size 256 --repeats %d --out maps.json`." % ms["repeats"])
+add("")
+add("### The two gathers (`sss.gather`)")
+add("")
+add("The same maps (bit for bit, `tests/radiosity_maps_gltest.cpp`) by the paper's layered fragment pass")
+add("and by the compute pass over the maps' G-buffer, bunny, K = 8, N = 4, 256² maps, in one run:")
+add("")
+add("| gather | maps [ms] | evaluations/s | shaded texels |")
+add("|---|---:|---:|---:|")
+for name in ("fragment", "compute"):
+    g = gathers[name]
+    add("| %s | %s | %s | %d |" % (name, fmt(g["maps_ms"]), mega(g["evaluations_per_s"]), g["shaded_texels"]))
+add("")
+add("Time ratio fragment / compute: %.2f on this device." % (gathers["fragment"]["maps_ms"] / gathers["compute"]["maps_ms"]))
 add("")
 add("## BSSRDF models")
 add("")
