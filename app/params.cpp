@@ -100,6 +100,11 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                 0.0),
                     [](auto& c) -> auto& { return c.render.toneMap.exposureEv; }));
 
+  r.add(bind<bool>(withDefault(declare("render.specular", "bool", "",
+                                       "Fresnel-weighted specular reflection on translucent objects: the environment "
+                                       "map in the mirror direction, or the uniform ambient sky without one."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.specular; }));
   r.add(bind<int>(withDefault(declare("field.res", "int", "samples per axis",
                                       "Lattice resolution of field objects, isosurfaced on the GPU every frame.", 16,
                                       256),

@@ -1,8 +1,9 @@
 #version 450 core
 // Opaque surfaces: Lambertian reflection of every light (with shadows) and of a uniform ambient
 // sky, L = ρ/π · E + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
-// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1) + F_r(ω_o) · L_ambient (the sky seen in the
-// surface's specular reflection, Fresnel-weighted).
+// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1) + F_r(ω_o) · L_env(mirror direction): the
+// specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
+// when there is none (render.specular off: no reflection).
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.glsl"
 #include "sss/algorithm1.glsl"
@@ -16,12 +17,28 @@ uniform vec3 uCameraPosition;
 uniform int uCameraOrthographic;
 uniform vec3 uCameraForward;
 uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps
+uniform int uSpecular;     // render.specular
+uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
+uniform sampler2D uEnvMap; // lat-long radiance (sss/environment_lights.h conventions)
+uniform float uEnvRotation;  // radians about +y, counter-clockwise seen from above
+uniform float uEnvScale;
 uniform float uEta;        // its relative index of refraction
 
 layout(location = 0) out vec4 oRadiance;
 layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it
 
 const float PI = 3.14159265358979;
+
+// Radiance arriving from direction d (unit, from the scene outward). The inverse of
+// environmentDirection (sss/environment_lights.h): turn back by the rotation, then
+// θ = acos(d.y), φ = atan2(d.x, −d.z), u = φ/2π + 1/2, v = θ/π.
+vec3 environmentRadiance(vec3 d) {
+  float c = cos(uEnvRotation), s = sin(uEnvRotation);
+  vec3 r = vec3(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+  float theta = acos(clamp(r.y, -1.0, 1.0));
+  float phi = atan(r.x, -r.z);
+  return uEnvScale * textureLod(uEnvMap, vec2(phi / (2.0 * PI) + 0.5, theta / PI), 0.0).rgb;
+}
 
 void main() {
   vec3 n = normalize(vWorldNormal);
@@ -32,8 +49,12 @@ void main() {
   if (uTranslucent != 0) {
     float seenBy;
     vec3 b = scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
-    float cosO = clamp(abs(dot(n, normalize(toCamera))), 0.0, 1.0);
-    oRadiance = vec4(fresnelTransmittance(cosO, uEta) / PI * b + fresnelReflectance(cosO, uEta) * uAmbient, 1.0);
+    vec3 v = normalize(toCamera);
+    vec3 facing = backFacing ? -n : n;
+    float cosO = clamp(dot(facing, v), 0.0, 1.0);
+    vec3 mirrored = uEnvironment != 0 ? environmentRadiance(reflect(-v, facing)) : uAmbient;
+    vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, uEta) * mirrored : vec3(0.0);
+    oRadiance = vec4(fresnelTransmittance(cosO, uEta) / PI * b + specular, 1.0);
     oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
     return;
   }

@@ -36,6 +36,7 @@ struct RenderSettings {
   float shadowBias = 0.0f;    ///< render.shadow_bias [shadow-map texels along the normal]
   int pcfRadius = 0;          ///< render.pcf_radius [texels]
   int fieldRes = 0;           ///< field.res [lattice samples per axis]
+  bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;
 };

@@ -39,6 +39,7 @@ Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const 
       surface_(shaders), display_(shaders) {
   checkLimits(scene, settings);
   ensureTargets(settings.width, settings.height);
+  if (scene.environment) surface_.setEnvironment(*scene.environment);
 }
 
 std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings& settings) {

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <vector>
 
+#include "gpu/hdr_io.h"
+
 namespace tallow::sss {
 namespace {
 constexpr GLuint kDirectionalShadowUnit = 0;
 constexpr GLuint kPointShadowUnit = 1;
 constexpr GLuint kMapsUnit = 2;
 constexpr GLuint kMapDepthUnit = 3;
+constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kMapViewsBinding = 5;  // shaders/sss/algorithm1.glsl
 
 /// std430 layout of algorithm1.glsl's MapViewGpu.
@@ -21,6 +24,17 @@ struct MapViewGpu {
 
 SurfacePass::SurfacePass(const gpu::ShaderLibrary& shaders)
     : program_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}}}) {}
+
+void SurfacePass::setEnvironment(const Environment& environment) {
+  const gpu::Image map = gpu::readHdr(environment.file);
+  environment_ = gpu::Texture::create2D(GL_RGBA32F, map.width, map.height);
+  glTextureSubImage2D(environment_.id(), 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT, map.pixels.data());
+  environment_.setFilter(GL_LINEAR, GL_LINEAR);
+  glTextureParameteri(environment_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);         // azimuth wraps
+  glTextureParameteri(environment_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);  // poles
+  environmentRotationDeg_ = environment.rotationDeg;
+  environmentScale_ = environment.scale;
+}
 
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                          const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
@@ -77,6 +91,12 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
   p.set("uCameraForward", camera.forward);
   p.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
   shadows.bind(kDirectionalShadowUnit, kPointShadowUnit);
+  p.set("uSpecular", settings.specular ? 1 : 0);
+  p.set("uEnvironment", environment_.id() ? 1 : 0);
+  p.set("uEnvMap", static_cast<int>(kEnvironmentUnit));
+  p.set("uEnvRotation", glm::radians(environmentRotationDeg_));
+  p.set("uEnvScale", environmentScale_);
+  if (environment_.id()) environment_.bind(kEnvironmentUnit);
   p.set("uMaps", static_cast<int>(kMapsUnit));
   p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
   gpu::Buffer mapViews;

@@ -18,6 +18,9 @@ constexpr int kMaxPointLights = 8;
 class SurfacePass {
  public:
   explicit SurfacePass(const gpu::ShaderLibrary& shaders);
+  /// The scene's environment map (lat-long radiance, sss::Environment conventions) for the
+  /// specular reflection on translucent objects; reads the file (throws std::runtime_error).
+  void setEnvironment(const Environment& environment);
   /// Draws into `target` (already sized and cleared by the caller). With `maps` (not null),
   /// translucent objects are shaded from the scattered radiosity maps (Algorithm 1, Eq. 5).
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
@@ -26,6 +29,8 @@ class SurfacePass {
 
  private:
   gpu::Program program_;
+  gpu::Texture environment_;
+  float environmentRotationDeg_ = 0.0f, environmentScale_ = 1.0f;
 };
 
 }  // namespace tallow::sss

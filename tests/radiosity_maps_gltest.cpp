@@ -354,6 +354,30 @@ TEST(RadiosityMaps, MapDirectionsListedInThePresetReplaceHalton) {
   EXPECT_NE(r.err.find("map_directions: expected 1 to 256 directions"), std::string::npos) << r.err;
 }
 
+TEST(RadiosityMaps, SpecularTermIsTheFresnelWeightedEnvironment) {
+  // The slab under a constant environment: every RGBE pixel (128, 128, 128, 129) is
+  // (128 + 0.5)·2^(129 − 136) = 1.00390625 W/(m²·sr) (Ward 1991). Seen straight down, the
+  // specular term is F_r(0°) L = ((η − 1)/(η + 1))² L on top of the subsurface term, which is the
+  // same with render.specular off (same scene, same seeds).
+  test::TempDir dir;
+  std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+  for (int i = 0; i < 32; ++i) hdr += std::string{char(128), char(128), char(128), char(129)};
+  dir.write("constant.hdr", hdr);
+  std::ifstream in(std::string(TALLOW_TEST_SOURCE_DIR) + "/presets/slab.json");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto preset = dir.write("slab-env.json", json.substr(0, json.rfind('}')) +
+                                                      ", \"environment\": {\"file\": \"constant.hdr\", \"lights\": 1}}\n");
+  const std::vector<std::string> small{"render.width=24", "render.height=24", "sss.maps=2", "sss.samples=2",
+                                       "sss.map_size=64", "sss.light_map_size=64"};
+  std::vector<std::string> on = small, off = small;
+  off.push_back("render.specular=false");
+  PresetSession a(preset.string(), on), b(preset.string(), off);
+  const gpu::Image with = a.render(), without = b.render();
+  const double eta = a.scene().objects[0].material.eta;
+  const double fr = std::pow((eta - 1.0) / (eta + 1.0), 2.0), l = 1.00390625;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(centreMean(with, c) - centreMean(without, c), fr * l, 1e-4 * fr * l) << c;
+}
+
 TEST(RadiosityMaps, MapsBeyondTheBudgetAreRefusedNamingTheLimit) {
   test::TempDir dir;
   const auto r = test::runTallow({"capture", "--preset", "bunny", "--size", "32x32", "--set", "sss.maps=256", "--set",
