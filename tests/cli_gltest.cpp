@@ -210,15 +210,19 @@ namespace {
 TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
   if (std::system("command -v Xvfb >/dev/null 2>&1") != 0) GTEST_SKIP() << "Xvfb is not installed";
   test::TempDir dir;
-  // Our own Xvfb on a display number of our own, and we wait for its socket: xvfb-run's automatic
-  // choice races with other X servers starting at the same moment on a busy machine.
-  const std::string n = std::to_string(100 + ::getpid() % 800);
+  // Our own Xvfb: -displayfd lets the server pick a free display number itself and write it to
+  // fd 3 once it accepts connections, so we do not probe numbers that another X server starting at
+  // the same moment can take (xvfb-run's choice can). Servers started by other processes at once
+  // can still collide on a machine running several test suites; a display that refuses us is
+  // retried with a fresh server (three tries), any other failure is the test's.
   const std::string script =
-      "cd " + dir.path().string() + " || exit 1; n=" + n + "; while [ -e /tmp/.X$n-lock ]; do n=$((n + 1)); done; "
-      "Xvfb :$n -screen 0 800x600x24 -nolisten tcp >xvfb.log 2>&1 & pid=$!; "
-      "for i in $(seq 200); do [ -e /tmp/.X11-unix/X$n ] && break; sleep 0.05; done; "
+      "cd " + dir.path().string() + " || exit 1; for try in 1 2 3; do rm -f display.txt; "
+      "Xvfb -displayfd 3 -screen 0 800x600x24 -nolisten tcp 3>display.txt >xvfb.log 2>&1 & pid=$!; "
+      "for i in $(seq 400); do [ -s display.txt ] && break; sleep 0.05; done; n=$(head -n 1 display.txt); "
+      "if [ -z \"$n\" ]; then kill $pid 2>/dev/null; wait $pid 2>/dev/null; echo \"Xvfb did not start: $(cat xvfb.log)\" >err.txt; continue; fi; "
       "DISPLAY=:$n " + std::string(TALLOW_TEST_BINARY) + " view --frames 3 --size 320x180 >err.txt 2>&1; "
-      "rc=$?; kill $pid; wait $pid 2>/dev/null; exit $rc";
+      "rc=$?; kill $pid; wait $pid 2>/dev/null; "
+      "if [ $rc -ne 0 ] && grep -q \"Failed to open display\" err.txt; then continue; fi; exit $rc; done; exit 1";
   const std::string command = "bash -c '" + script + "'";
   const int status = std::system(command.c_str());
   std::ifstream err(dir.path() / "err.txt");
