@@ -115,14 +115,24 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
   {
     Param p = withDefault(declare("method", "enum", "",
                                   "How translucent objects are shaded: radiosity-maps (the paper's scattered radiosity "
-                                  "maps) or albedo (Lambertian with the object's albedo, no subsurface transport)."),
+                                  "maps), no-cache (the same gather per camera pixel against the light G-buffers, "
+                                  "as translucent shadow maps; no maps, a new estimate every frame) or albedo "
+                                  "(Lambertian with the object's albedo, no subsurface transport)."),
                           "radiosity-maps");
-    p.choices = {"radiosity-maps", "albedo"};
+    p.choices = {"radiosity-maps", "no-cache", "albedo"};
     p.getter = [](const Config& c) {
-      return json(c.render.sss.method == sss::SssMethod::RadiosityMaps ? "radiosity-maps" : "albedo");
+      switch (c.render.sss.method) {
+        case sss::SssMethod::RadiosityMaps: return json("radiosity-maps");
+        case sss::SssMethod::NoCache: return json("no-cache");
+        case sss::SssMethod::Albedo: break;
+      }
+      return json("albedo");
     };
     p.setter = [](Config& c, const json& v) {
-      c.render.sss.method = v.get<std::string>() == "albedo" ? sss::SssMethod::Albedo : sss::SssMethod::RadiosityMaps;
+      const std::string m = v.get<std::string>();
+      c.render.sss.method = m == "albedo"     ? sss::SssMethod::Albedo
+                            : m == "no-cache" ? sss::SssMethod::NoCache
+                                              : sss::SssMethod::RadiosityMaps;
     };
     r.add(std::move(p));
   }

@@ -7,6 +7,7 @@
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.glsl"
 #include "sss/algorithm1.glsl"
+#include "sss/gather.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -16,13 +17,15 @@ uniform vec3 uAmbient;
 uniform vec3 uCameraPosition;
 uniform int uCameraOrthographic;
 uniform vec3 uCameraForward;
-uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps
+uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps (or, with uNoCache, the gather)
+uniform int uNoCache;      // 1: the gather per pixel against the light G-buffers, no maps
+uniform int uSlot;         // the translucent slot of this object (no-cache)
 uniform int uSpecular;     // render.specular
 uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
 uniform sampler2D uEnvMap; // lat-long radiance (sss/environment_lights.h conventions)
 uniform float uEnvRotation;  // radians about +y, counter-clockwise seen from above
 uniform float uEnvScale;
-uniform float uEta;        // its relative index of refraction
+uniform float uObjectEta;        // its relative index of refraction
 
 layout(location = 0) out vec4 oRadiance;
 layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it
@@ -47,14 +50,16 @@ void main() {
   vec3 toCamera = uCameraOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorldPosition;
   bool backFacing = dot(n, toCamera) < 0.0;
   if (uTranslucent != 0) {
-    float seenBy;
-    vec3 b = scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
+    float seenBy = 1.0;
+    vec3 b = uNoCache != 0
+                 ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
+                 : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
     vec3 v = normalize(toCamera);
     vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);
     vec3 mirrored = uEnvironment != 0 ? environmentRadiance(reflect(-v, facing)) : uAmbient;
-    vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, uEta) * mirrored : vec3(0.0);
-    oRadiance = vec4(fresnelTransmittance(cosO, uEta) / PI * b + specular, 1.0);
+    vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, uObjectEta) * mirrored : vec3(0.0);
+    oRadiance = vec4(fresnelTransmittance(cosO, uObjectEta) / PI * b + specular, 1.0);
     oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
     return;
   }

@@ -16,7 +16,6 @@ namespace tallow::sss {
 namespace {
 
 constexpr GLuint kLayerViewsBinding = 4;  // layered.geom
-constexpr GLuint kDirPositionUnit = 0, kDirNormalUnit = 1, kPointPositionUnit = 2, kPointNormalUnit = 3;
 /// Map memory allowed before the renderer refuses K × size² (colour with mipmaps + depth).
 constexpr std::size_t kMapMemoryBudget = std::size_t{4} << 30;
 
@@ -166,12 +165,16 @@ RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
 }
 
 bool RadiosityMaps::applies(const Scene& scene, const RenderSettings& settings) {
-  return settings.sss.method == SssMethod::RadiosityMaps &&
+  return settings.sss.method == SssMethod::RadiosityMaps && needsLightGBuffers(scene, settings);
+}
+
+bool RadiosityMaps::needsLightGBuffers(const Scene& scene, const RenderSettings& settings) {
+  return settings.sss.method != SssMethod::Albedo &&
          std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.translucent; });
 }
 
 void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settings) {
-  if (!applies(scene, settings)) return;
+  if (!needsLightGBuffers(scene, settings)) return;
   const SssSettings& s = settings.sss;
   const auto translucent = std::count_if(scene.objects.begin(), scene.objects.end(),
                                          [](const SceneObject& o) { return o.translucent; });
@@ -251,7 +254,7 @@ void RadiosityMaps::ensureTargets(const RenderSettings& settings, int k, int dir
     pointDepth_ = gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, lightSize, pointCount);
   }
   const int size = settings.sss.mapSize;
-  if (!maps_.id() || maps_.width() != size || maps_.depth() != k) {
+  if (k > 0 && (!maps_.id() || maps_.width() != size || maps_.depth() != k)) {
     maps_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
     mapDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, k);
     mapDepth_.setFilter(GL_LINEAR, GL_LINEAR);  // bilinear comparison taps in Algorithm 1
@@ -280,7 +283,8 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   std::vector<int> dirLights, pointLights;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
     (scene.lights[i].kind == LightKind::Directional ? dirLights : pointLights).push_back(static_cast<int>(i));
-  ensureTargets(settings, mapCount(scene, settings), static_cast<int>(dirLights.size()), static_cast<int>(pointLights.size()));
+  ensureTargets(settings, applies(scene, settings) ? mapCount(scene, settings) : 0, static_cast<int>(dirLights.size()),
+                static_cast<int>(pointLights.size()));
   if (frames_ > 0) return;  // light and geometry unchanged: the G-buffers of the first frame hold
 
   // Layer matrices: directional views fitted to the translucent objects (depth over the whole
@@ -361,7 +365,9 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   }
 }
 
-void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene) const {
+void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene, GLuint firstUnit) const {
+  const GLuint kDirPositionUnit = firstUnit, kDirNormalUnit = firstUnit + 1, kPointPositionUnit = firstUnit + 2,
+               kPointNormalUnit = firstUnit + 3;
   std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
   for (const Light& l : scene.lights) {
     if (l.kind == LightKind::Directional) {
@@ -396,9 +402,10 @@ void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene) const 
   (np > 0 ? pointNormal_ : dummyPoint_).bind(kPointNormalUnit);
 }
 
-void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const RenderSettings& settings) {
+void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const RenderSettings& settings,
+                                      GLuint firstUnit, int frame) const {
   const SssSettings& s = settings.sss;
-  setLightUniforms(p, scene);
+  setLightUniforms(p, scene, firstUnit);
   std::vector<glm::vec3> sigmaA(kMaxTranslucentObjects, glm::vec3(0.0f)), sigmaS(kMaxTranslucentObjects, glm::vec3(1.0f)),
       g(kMaxTranslucentObjects, glm::vec3(0.0f));
   std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
@@ -417,7 +424,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
   glProgramUniform1fv(p.id(), p.location("uEta"), kMaxTranslucentObjects, eta.data());
   p.set("uBssrdfModel", static_cast<int>(s.model));
   p.set("uSamples", s.samples);
-  p.set("uFrame", frames_);
+  p.set("uFrame", frame);
   p.set("uStereographic", s.stereographic ? 1 : 0);
 }
 
@@ -483,7 +490,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   if (compute) {
     gpu::Program& p = mapCompute_;
     p.use();
-    setGatherUniforms(p, scene, settings);
+    setGatherUniforms(p, scene, settings, 0, frames_);
     constexpr GLuint kMapPositionUnit = 4, kMapNormalUnit = 5;
     p.set("uMapPosition", static_cast<int>(kMapPositionUnit));
     p.set("uMapNormal", static_cast<int>(kMapNormalUnit));
@@ -507,7 +514,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     mapProgram_.use();
-    setGatherUniforms(mapProgram_, scene, settings);
+    setGatherUniforms(mapProgram_, scene, settings, 0, frames_);
     drawTranslucent(mapProgram_);
   }
   ++frames_;

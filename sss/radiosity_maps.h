@@ -73,8 +73,10 @@ class RadiosityMaps {
  public:
   explicit RadiosityMaps(const gpu::ShaderLibrary& shaders);
 
-  /// True when the scene has translucent objects and `settings` selects this method.
+  /// True when the scene has translucent objects and `settings` selects the radiosity maps.
   static bool applies(const Scene& scene, const RenderSettings& settings);
+  /// True when the frame needs the light G-buffers: radiosity maps or no-cache, with translucent objects.
+  static bool needsLightGBuffers(const Scene& scene, const RenderSettings& settings);
   /// Throws std::invalid_argument naming the limit when K, the map sizes or the memory exceed
   /// what this GPU holds (GL_MAX_ARRAY_TEXTURE_LAYERS, GL_MAX_TEXTURE_SIZE, a memory budget), or
   /// when the scene has more translucent objects or lights than the passes hold.
@@ -100,6 +102,11 @@ class RadiosityMaps {
   const gpu::Texture& mapDepth() const { return mapDepth_; }
   const gpu::Texture& directionalPositions() const { return dirPosition_; }
   std::size_t bytes() const;
+  /// Everything gather.glsl reads (lights, G-buffers on texture units firstUnit … firstUnit + 3,
+  /// materials, model, N, the frame seed), for a program that includes it: the map passes, and
+  /// the camera pass of the no-cache method.
+  void setGatherUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings, GLuint firstUnit,
+                         int frame) const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
   const std::vector<int>& slots() const { return slots_; }
   /// The directional light G-buffers (tests): normals, and per directional light (scene order of
@@ -114,9 +121,8 @@ class RadiosityMaps {
 
  private:
   void ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount);
-  void setLightUniforms(gpu::Program& program, const Scene& scene) const;
+  void setLightUniforms(gpu::Program& program, const Scene& scene, GLuint firstUnit) const;
 
-  void setGatherUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings);
 
   gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_;
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light

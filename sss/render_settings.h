@@ -10,6 +10,7 @@ namespace tallow::sss {
 enum class SssMethod {
   RadiosityMaps,  ///< scattered radiosity maps (Dal Corso et al. 2017, issue 5)
   Albedo,         ///< no subsurface transport: Lambertian with the object's albedo (a baseline)
+  NoCache,        ///< the gather per camera pixel against the light G-buffers, no maps (paper Fig. 11)
 };
 
 /// The scattered radiosity maps of Dal Corso et al. (sss.* parameters).

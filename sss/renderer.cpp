@@ -62,14 +62,16 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
     passes.push_back({"shadow.point", std::to_string(pointShadowed) +
                                           " point light(s) cast shadows: one depth cube each (6 faces)"});
   const bool maps = RadiosityMaps::applies(scene, settings);
-  if (maps) {
+  const bool noCache = settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings);
+  if (maps || noCache) {
     int dir = 0, point = 0;
     for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dir : point)++;
     const SssSettings& s = settings.sss;
     passes.push_back({"sss.light_gbuffer", std::to_string(dir) + " directional (orthographic layer) and " +
                                                std::to_string(point) + " point (cube) light G-buffer(s), " +
                                                std::to_string(s.lightMapSize) + "^2, one layered pass each kind"});
-    passes.push_back({"sss.maps", std::to_string(mapCount(scene, settings)) +
+    if (maps)
+      passes.push_back({"sss.maps", std::to_string(mapCount(scene, settings)) +
                                       (scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") +
                                       " scattered radiosity maps of " + std::to_string(s.mapSize) +
                                       "^2: depth pre-pass, then " + std::to_string(s.samples) +
@@ -77,10 +79,14 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
                                       " dipole), accumulated until " + std::to_string(s.frames) + " frames"});
   }
   passes.push_back({"surface", std::to_string(scene.objects.size()) + " object(s): " +
-                                   (maps ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
-                                           "ones Lambertian"
-                                         : "Lambertian with direct light, shadows and ambient (method albedo: "
-                                           "translucent objects use their albedo)") +
+                                   (maps      ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
+                                                "ones Lambertian"
+                                    : noCache ? "translucent ones by the gather per pixel against the light G-buffers "
+                                                "(no-cache: " + std::to_string(settings.sss.samples) +
+                                                    " samples per pixel and band, a new estimate every frame), opaque "
+                                                    "ones Lambertian"
+                                              : "Lambertian with direct light, shadows and ambient (method albedo: "
+                                                "translucent objects use their albedo)") +
                                    " with direct light, shadows and ambient"});
   return passes;
 }
@@ -152,7 +158,12 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
       const CameraView camera = cameraView(scene.camera, aspect, geometry_.worldBounds());
       const RadiosityMaps* maps = maps_ && RadiosityMaps::applies(scene, settings) ? maps_.get() : nullptr;
-      surface_.render(scene, settings, geometry_, camera, shadows_, maps, target_, settings.width, settings.height);
+      const RadiosityMaps* noCache =
+          maps_ && settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings)
+              ? maps_.get()
+              : nullptr;
+      surface_.render(scene, settings, geometry_, camera, shadows_, maps, noCache, noCacheFrame_++, target_,
+                      settings.width, settings.height);
     }
   }
   FrameTimings t;

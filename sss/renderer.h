@@ -79,6 +79,7 @@ class Renderer {
   std::unique_ptr<FieldObjects> fields_;
   const gpu::ShaderLibrary& shaders_;
   std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
+  int noCacheFrame_ = 0;                 ///< seeds of the no-cache gather, one estimate per frame
   ShadowPass shadows_;
   SurfacePass surface_;
   DisplayPass display_;

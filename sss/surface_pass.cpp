@@ -12,6 +12,7 @@ constexpr GLuint kPointShadowUnit = 1;
 constexpr GLuint kMapsUnit = 2;
 constexpr GLuint kMapDepthUnit = 3;
 constexpr GLuint kEnvironmentUnit = 6;
+constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
 constexpr GLuint kMapViewsBinding = 5;  // shaders/sss/algorithm1.glsl
 
 /// std430 layout of algorithm1.glsl's MapViewGpu.
@@ -38,7 +39,8 @@ void SurfacePass::setEnvironment(const Environment& environment) {
 
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                          const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-                         const gpu::Framebuffer& target, int width, int height) {
+                         const RadiosityMaps* noCache, int frame, const gpu::Framebuffer& target, int width,
+                         int height) {
   // Lights into the shader's arrays.
   std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
   std::vector<int> dirLayer, pointLayer;
@@ -97,6 +99,14 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
   p.set("uEnvRotation", glm::radians(environmentRotationDeg_));
   p.set("uEnvScale", environmentScale_);
   if (environment_.id()) environment_.bind(kEnvironmentUnit);
+  p.set("uNoCache", noCache ? 1 : 0);
+  // The gather's samplers on their own units even when unused: a sampler left on unit 0 would clash
+  // with the shadow map's type there and void every draw.
+  p.set("uSssDirPosition", static_cast<int>(kGatherFirstUnit));
+  p.set("uSssDirNormal", static_cast<int>(kGatherFirstUnit + 1));
+  p.set("uSssPointGPosition", static_cast<int>(kGatherFirstUnit + 2));
+  p.set("uSssPointGNormal", static_cast<int>(kGatherFirstUnit + 3));
+  if (noCache) noCache->setGatherUniforms(p, scene, settings, kGatherFirstUnit, frame);
   p.set("uMaps", static_cast<int>(kMapsUnit));
   p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
   gpu::Buffer mapViews;
@@ -132,8 +142,9 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
-    p.set("uTranslucent", maps && object.translucent ? 1 : 0);
-    p.set("uEta", object.material.eta);
+    p.set("uTranslucent", (maps || noCache) && object.translucent ? 1 : 0);
+    if (noCache && object.translucent) p.set("uSlot", noCache->slots()[static_cast<std::size_t>(item.objectIndex)]);
+    p.set("uObjectEta", object.material.eta);
     item.draw();
   }
   glDisable(GL_DEPTH_TEST);

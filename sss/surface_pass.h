@@ -22,10 +22,11 @@ class SurfacePass {
   /// specular reflection on translucent objects; reads the file (throws std::runtime_error).
   void setEnvironment(const Environment& environment);
   /// Draws into `target` (already sized and cleared by the caller). With `maps` (not null),
-  /// translucent objects are shaded from the scattered radiosity maps (Algorithm 1, Eq. 5).
+  /// translucent objects are shaded from the scattered radiosity maps (Algorithm 1, Eq. 5); with
+  /// `noCache` (not null: its light G-buffers), by the gather per pixel (seeds from `frame`).
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
               const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-              const gpu::Framebuffer& target, int width, int height);
+              const RadiosityMaps* noCache, int frame, const gpu::Framebuffer& target, int width, int height);
 
  private:
   gpu::Program program_;

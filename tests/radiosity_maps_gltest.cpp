@@ -67,6 +67,25 @@ TEST(RadiosityMaps, SlabMatchesTheStandardDipoleTotalFarFromTheEdges) {
   }
 }
 
+TEST(RadiosityMaps, NoCacheVariantMatchesTheSlabToo) {
+  // method=no-cache (the paper's Fig. 11, as translucent shadow maps): the same gather per camera
+  // pixel against the light G-buffer, no maps. One frame, N = 64 per pixel and band; the centre
+  // square's mean has the same expectation F_t² E R_d/π.
+  PresetSession s("slab", {"render.width=48", "render.height=48", "method=no-cache", "sss.samples=64",
+                           "sss.light_map_size=512"});
+  sss::FrameTimings t;
+  const gpu::Image image = s.render(0.0, &t);
+  EXPECT_FALSE(std::any_of(t.passes.begin(), t.passes.end(), [](const auto& p) { return p.name == "sss.maps"; }));
+  EXPECT_TRUE(std::any_of(t.passes.begin(), t.passes.end(), [](const auto& p) { return p.name == "sss.light_gbuffer"; }));
+  const sss::Material& m = s.scene().objects[0].material;
+  const double ft = test::normalTransmittance(m.eta);
+  for (int c = 0; c < 3; ++c) {
+    const double expected = ft * ft * test::jensenTotalRd(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta) / 3.14159265358979;
+    std::printf("[ maps ] no-cache slab band %d: ratio %.4f\n", c, centreMean(image, c) / expected);
+    EXPECT_NEAR(centreMean(image, c) / expected, 1.0, 0.02) << "band " << c;
+  }
+}
+
 // --- The GPU estimator is the shared code ----------------------------------------------------------
 
 TEST(RadiosityMaps, GpuEstimatorEqualsTheCpuInstantiationAtChosenTexels) {
@@ -94,7 +113,10 @@ TEST(RadiosityMaps, GpuEstimatorEqualsTheCpuInstantiationAtChosenTexels) {
     if (t.x < 0.0f || t.y < 0.0f || t.x >= 1.0f || t.y >= 1.0f) return std::nullopt;
     const auto i = static_cast<std::size_t>(static_cast<int>(t.y * gsize)) * gsize + static_cast<int>(t.x * gsize);
     if (static_cast<int>(positions[i].w + 0.5f) != 1) return std::nullopt;  // not slot 0's tag
-    return sss::LightGBufferHit{glm::dvec3(positions[i]) * 1000.0, glm::normalize(glm::dvec3(normals[i]))};
+    // As gather.glsl: x_j's place across the light, the texel's depth along it (w = +y here).
+    const glm::dvec3 w(0.0, 1.0, 0.0);
+    const glm::dvec3 xi = xjMm + glm::dot(glm::dvec3(positions[i]) * 1000.0 - xjMm, w) * w;
+    return sss::LightGBufferHit{xi, glm::normalize(glm::dvec3(normals[i]))};
   };
   int compared = 0;
   double worst = 0.0;

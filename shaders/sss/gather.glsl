@@ -37,7 +37,11 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
                                     uint(map), uint(uFrame), uint(c), uint(j));
         GSample g = directionalGBuffer(l, s.xj / MM_PER_M);
         if (g.tag != slot + 1) continue;  // another object or an occluder: x_j is not lit here
-        acc += sssRadiosityTerm(uBssrdfModel, g.position * MM_PER_M, normalize(g.normal), w, xo, no, k, s.weight);
+        // x_i keeps x_j's exact place across the light's view and takes only its depth along the
+        // light from the texel: the texel's centre would quantise r to the G-buffer grid, which
+        // biases B where x_o sits at a fixed offset in that grid (an aligned camera, a flat slab).
+        vec3 xi = s.xj + dot(g.position * MM_PER_M - s.xj, w) * w;
+        acc += sssRadiosityTerm(uBssrdfModel, xi, normalize(g.normal), w, xo, no, k, s.weight);
       }
       sum += sssRadiosityFromSum(acc, uSssDirIrradiance[l][c], uSamples);
     }
@@ -52,7 +56,9 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
         vec3 dir = uStereographic != 0 ? sssStereographicLookupDirection(xo, s.xj, xl) : sssPlanarLookupDirection(s.xj, xl);
         GSample g = pointGBuffer(l, dir);
         if (g.tag != slot + 1) continue;
-        vec3 xi = g.position * MM_PER_M;
+        // The texel's distance from the light along the exact look-up direction (as above: no
+        // quantisation of the direction to the cube's texels).
+        vec3 xi = xl + normalize(dir) * length(g.position * MM_PER_M - xl);
         vec3 toLight = xl - xi;
         float d2 = dot(toLight, toLight) / (MM_PER_M * MM_PER_M);  // m²: E = I / d²
         // E = I/d² at x_i varies per sample, so it enters the sum (Eq. 9 with L_ℓ inside).
