@@ -1,5 +1,7 @@
 #include "gpu/hdr_io.h"
 
+#include "gpu/file_bytes.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -26,21 +28,6 @@ std::string printable(std::string_view text) {
   for (char c : text.substr(0, 60)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
   if (text.size() > 60) out += "...";
   return out;
-}
-
-std::vector<std::uint8_t> readWholeFile(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(name, "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(name, std::strerror(errno));
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) fail(name, "cannot determine the file size");
-  in.seekg(0, std::ios::beg);
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) fail(name, "read error");
-  return bytes;
 }
 
 /// A decimal integer in [1, kMaxHdrSide], the whole of `text`.
@@ -242,7 +229,7 @@ Image decodeHdr(std::span<const std::uint8_t> data, const std::string& nameForEr
 }
 
 Image readHdr(const std::filesystem::path& path) {
-  const std::vector<std::uint8_t> bytes = readWholeFile(path);
+  const std::vector<std::uint8_t> bytes = readFileBytes(path);
   return decodeHdr(bytes, path.string());
 }
 

@@ -1,5 +1,7 @@
 #include "gpu/image_io.h"
 
+#include "gpu/file_bytes.h"
+
 #include <OpenEXR/IexBaseExc.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfCompression.h>
@@ -46,22 +48,6 @@ std::string oneLine(std::string_view text) {
 
 [[noreturn]] void fail(const std::string& name, std::string_view what) {
   throw std::runtime_error(name + ": " + oneLine(what));
-}
-
-std::vector<std::uint8_t> readWholeFile(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(name, "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(name, std::strerror(errno));
-  std::vector<std::uint8_t> bytes;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) fail(name, "cannot determine the file size");
-  in.seekg(0, std::ios::beg);
-  bytes.resize(static_cast<std::size_t>(size));
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) fail(name, "read error");
-  return bytes;
 }
 
 /// The checks every reader makes before it allocates pixels.
@@ -590,7 +576,7 @@ void writePng(const std::filesystem::path& path, const Image& image, const ToneM
 }
 
 Image readPng(const std::filesystem::path& path) {
-  const std::vector<std::uint8_t> bytes = readWholeFile(path);
+  const std::vector<std::uint8_t> bytes = readFileBytes(path);
   return readPngFromMemory(bytes, path.string());
 }
 
@@ -674,7 +660,7 @@ void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelTyp
 }
 
 Image readExr(const std::filesystem::path& path) {
-  const std::vector<std::uint8_t> bytes = readWholeFile(path);
+  const std::vector<std::uint8_t> bytes = readFileBytes(path);
   return readExrFromMemory(bytes, path.string());
 }
 
@@ -691,7 +677,7 @@ Image readExrFromMemory(std::span<const std::uint8_t> data, const std::string& n
 
 std::map<std::string, std::string> readExrStringAttributes(const std::filesystem::path& path) {
   const std::string name = path.string();
-  const std::vector<std::uint8_t> bytes = readWholeFile(path);
+  const std::vector<std::uint8_t> bytes = readFileBytes(path);
   try {
     scanExrHeaders(bytes);
     MemoryIStream stream(bytes, name);

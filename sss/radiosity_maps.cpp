@@ -337,32 +337,23 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
       item.draw(static_cast<int>(layers.size()));
     }
   };
-  if (!dirLayers.empty()) {
+  const auto renderKind = [&](const gpu::Texture& position, const gpu::Texture& normal, const gpu::Texture& depth,
+                              const std::vector<glm::mat4>& layers, const char* what) {
+    if (layers.empty()) return;
     gpu::Framebuffer fb;
-    fb.attachColor(0, dirPosition_);
-    fb.attachColor(1, dirNormal_);
-    fb.attachDepth(dirDepth_);
+    fb.attachColor(0, position);
+    fb.attachColor(1, normal);
+    fb.attachDepth(depth);
     fb.setDrawBuffers(2);
-    fb.checkComplete("directional light G-buffer");
+    fb.checkComplete(what);
     glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, clearPosition);
     glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, clearPosition);
     glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
     fb.bind();
-    drawAll(dirLayers);
-  }
-  if (!pointLayers.empty()) {
-    gpu::Framebuffer fb;
-    fb.attachColor(0, pointPosition_);
-    fb.attachColor(1, pointNormal_);
-    fb.attachDepth(pointDepth_);
-    fb.setDrawBuffers(2);
-    fb.checkComplete("point light G-buffer");
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, clearPosition);
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, clearPosition);
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
-    fb.bind();
-    drawAll(pointLayers);
-  }
+    drawAll(layers);
+  };
+  renderKind(dirPosition_, dirNormal_, dirDepth_, dirLayers, "directional light G-buffer");
+  renderKind(pointPosition_, pointNormal_, pointDepth_, pointLayers, "point light G-buffer");
 }
 
 void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene, GLuint firstUnit) const {
