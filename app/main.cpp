@@ -14,6 +14,7 @@
 #include "app/params.h"
 #include "app/probe_command.h"
 #include "app/profile_command.h"
+#include "app/reference_command.h"
 #include "app/view_command.h"
 #include "gpu/gl_context.h"
 #include "gpu/shader_library.h"
@@ -64,6 +65,17 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--gl", capture.gl, "OpenGL context: osmesa (default) or egl")
       ->check(CLI::IsMember({"osmesa", "egl"}));
   captureCmd->add_flag("--exr-float", capture.exrFloat, "write 32-bit float EXR channels instead of half");
+
+  tallow::app::ReferenceOptions reference;
+  auto* referenceCmd = app.add_subcommand("reference", "CPU ground truth (Embree, TBB): the capture image by Monte Carlo integration of the BSSRDF");
+  addSceneOptions(*referenceCmd, reference.scene);
+  referenceCmd->add_option("--out", reference.out, "REF.exr (REF_stderr.exr beside it)")->required();
+  referenceCmd->add_option("--time", reference.timeS, "animation time [s]");
+  referenceCmd->add_option("--spp", reference.spp, "passes (each with fresh surface points)");
+  referenceCmd->add_option("--rel-error", reference.relError, "stop at this relative standard error (docs/reference.md)");
+  referenceCmd->add_option("--points", reference.points, "surface points per translucent object and pass");
+  referenceCmd->add_option("--seed", reference.seed, "random seed");
+  referenceCmd->add_option("--threads", reference.threads, "worker threads (0: all cores)");
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
 
@@ -159,6 +171,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*captureCmd) return tallow::app::runCapture(capture);
+    if (*referenceCmd) return tallow::app::runReference(reference);
     if (*paramsCmd) return listParams();
     if (*probeBssrdfCmd) return tallow::app::runProbeBssrdf(probeBssrdf);
     if (*profileCmd) return tallow::app::runProbeProfile(profile);

@@ -1,0 +1,58 @@
+#pragma once
+// The CPU ground truth (`tallow reference`, issue 6): the image `capture` renders, computed by
+// direct Monte Carlo integration of the BSSRDF over the translucent objects' surfaces as in the
+// directional-dipole paper (§4) — points spread over each surface by area, each lit through shadow
+// rays, summed with the shared S_d (sss/bssrdf.h) into the scattered radiosity B of the
+// radiosity-maps paper's Eq. 7 — and Lambertian opaque surfaces with hard shadows. Rays: Embree 3;
+// threads: TBB. Progressive: passes of fresh points, a per-pixel mean and variance over passes, and
+// a stop on a pass count or a relative standard error. Formulas and limitations: docs/reference.md.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "gpu/image.h"
+#include "sss/render_settings.h"
+#include "sss/scene.h"
+
+namespace tallow::sss {
+
+struct ReferenceSettings {
+  double timeS = 0.0;           ///< animation time: field objects meshed and flame lights placed at t
+  int maxPasses = 0;            ///< stop after this many passes (0: no pass limit)
+  double relError = 0.0;        ///< stop once the relative standard error is at most this (0: off)
+  int pointsPerPass = 16384;    ///< M, surface points per translucent object and pass (≥ 1)
+  std::uint64_t seed = 1;       ///< the random stream; results do not depend on the thread count
+  int threads = 0;              ///< 0: TBB's default
+  int minPasses = 8;            ///< with relError: passes before the error estimate is trusted (≥ 2)
+  int passLimit = 1 << 16;      ///< with relError only: give up after this many passes
+};
+
+/// The statistic the stopping rule and the metadata use, over the pixels whose camera ray hits a
+/// translucent object: ε = √(mean_p Σ_c se_{p,c}²) / √(mean_p Σ_c L_{p,c}²), the relative RMS of the
+/// per-pixel standard errors of the mean (se² = sample variance of the pass estimates / passes).
+/// It predicts the relative RMSE of the reference itself in the bench's colour-band metric.
+inline constexpr const char* kReferenceErrorStatistic = "relative RMS standard error over translucent pixels";
+
+struct ReferenceResult {
+  gpu::Image radiance;       ///< linear RGB, alpha 1: the mean of the passes
+  gpu::Image standardError;  ///< per pixel and band, the standard error of that mean (0 after one pass)
+  int passes = 0;
+  int pointsPerPass = 0;
+  double relError = 0.0;     ///< ε above after the last pass (infinity after one pass with translucent pixels)
+  int translucentPixels = 0;
+  std::size_t triangles = 0;  ///< in the Embree scene
+  double seconds = 0.0;       ///< wall time of the integration (set-up included)
+};
+
+/// Called after every pass with (passes done, ε); return false to stop early.
+using ReferenceProgress = std::function<bool(int passes, double relError)>;
+
+/// Renders `scene` (lights as loaded: environment lights included, flame lights moved to timeS)
+/// with `render`'s size, camera aspect, sss.model, method, specular, shadows, ambient and background.
+/// Throws std::invalid_argument (one line) on bad settings: neither stop given, maxPasses < 0,
+/// relError < 0 or not finite, pointsPerPass < 1, size < 1; std::runtime_error when a mesh or the
+/// environment map cannot be read.
+ReferenceResult renderReference(const Scene& scene, const RenderSettings& render, const ReferenceSettings& settings,
+                                const ReferenceProgress& progress = {});
+
+}  // namespace tallow::sss

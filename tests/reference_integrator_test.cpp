@@ -1,0 +1,174 @@
+// The CPU reference integrator (sss/reference_integrator.h, `tallow reference`): the analytic slab
+// within its own error bound, an honest error estimate (two seeds differ by about √2 × the
+// estimated standard error), and one-line refusals of bad options. No GL.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "app/input_error.h"
+#include "app/reference_command.h"
+#include "app/setup.h"
+#include "gpu/image_io.h"
+#include "sss/reference_integrator.h"
+#include "support/dipole_totals.h"
+#include "support/error_of.h"
+#include "support/run_tallow.h"
+#include "support/temp_dir.h"
+
+namespace tallow {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+app::LoadedScene slab(const std::string& size) {
+  app::SceneOptions options;
+  options.preset = "slab";
+  options.size = size;
+  return app::loadScene(options);
+}
+
+sss::ReferenceResult integrate(const app::LoadedScene& scene, int passes, int points, std::uint64_t seed) {
+  sss::ReferenceSettings s;
+  s.maxPasses = passes;
+  s.pointsPerPass = points;
+  s.seed = seed;
+  return sss::renderReference(scene.config.scene, scene.config.render, s);
+}
+
+// (a) Far from its edges the slab under a normal directional light E is the half-space of the
+// dipole: L = F_t(0)/π · B with B = F_t(0) E R_d,total (Jensen's closed form).
+TEST(ReferenceIntegrator, AnalyticSlabWithinItsOwnErrorBound) {
+  // 3×3 pixels 8 cm apart, all on the slab's top; the centre pixel is the slab's centre.
+  const app::LoadedScene scene = slab("3x3");
+  ASSERT_EQ(scene.config.render.sss.model, sss::BssrdfModel::Standard);
+  const sss::ReferenceResult r = integrate(scene, 16, 1 << 20, 11);
+  EXPECT_EQ(r.passes, 16);
+  EXPECT_EQ(r.translucentPixels, 9);
+  const sss::Material& m = scene.config.scene.objects.at(0).material;
+  const double E = scene.config.scene.lights.at(0).intensity.x;
+  const double ft = test::normalTransmittance(m.eta);
+  const glm::vec4 centre = r.radiance.at(1, 1), se = r.standardError.at(1, 1);
+  for (int c = 0; c < 3; ++c) {
+    const double expected = ft * ft * E * test::jensenTotalRd(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta) / kPi;
+    const double bound = 3.0 * se[c] + 0.002 * expected;
+    std::printf("band %d: reference %.6g +- %.3g (%.2f%%), analytic %.6g, deviation %.2f sigma\n", c, centre[c], se[c],
+                100.0 * se[c] / expected, expected, (centre[c] - expected) / se[c]);
+    EXPECT_GT(se[c], 0.0f);
+    EXPECT_LT(se[c], 0.04 * expected) << "the bound must be tight enough to mean something";
+    EXPECT_NEAR(centre[c], expected, bound) << "band " << c;
+  }
+}
+
+// (b) Two independent runs differ per pixel by about √2 × the estimated standard error.
+TEST(ReferenceIntegrator, ErrorEstimateIsHonest) {
+  const app::LoadedScene scene = slab("9x9");
+  const sss::ReferenceResult a = integrate(scene, 16, 8192, 1);
+  const sss::ReferenceResult b = integrate(scene, 16, 8192, 2);
+  std::vector<double> z;
+  for (int y = 0; y < 9; ++y)
+    for (int x = 0; x < 9; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double sa = a.standardError.at(x, y)[c], sb = b.standardError.at(x, y)[c];
+        if (!(sa > 0.0 && sb > 0.0)) continue;
+        z.push_back((a.radiance.at(x, y)[c] - b.radiance.at(x, y)[c]) / std::sqrt(sa * sa + sb * sb));
+      }
+  ASSERT_EQ(z.size(), 49u * 3u);
+  double sum2 = 0.0;
+  int within = 0;
+  for (double v : z) {
+    sum2 += v * v;
+    within += std::abs(v) <= 3.0 ? 1 : 0;
+  }
+  const double rms = std::sqrt(sum2 / static_cast<double>(z.size()));
+  const double share = static_cast<double>(within) / static_cast<double>(z.size());
+  std::printf("RMS z %.3f, %.1f%% within 3 sigma, relative errors %.4f / %.4f\n", rms, 100.0 * share, a.relError,
+              b.relError);
+  EXPECT_GE(share, 0.95);
+  EXPECT_GE(rms, 0.7);
+  EXPECT_LE(rms, 1.4);
+  EXPECT_GT(a.relError, 0.0);
+  EXPECT_TRUE(std::isfinite(a.relError));
+}
+
+// The relative-error stop ends after the minimum passes once ε is reached, and ε falls with passes.
+TEST(ReferenceIntegrator, StopsAtTheRequestedRelativeError) {
+  const app::LoadedScene scene = slab("5x5");
+  sss::ReferenceSettings s;
+  s.relError = 0.2;
+  s.pointsPerPass = 16384;
+  s.passLimit = 200;
+  const sss::ReferenceResult r = sss::renderReference(scene.config.scene, scene.config.render, s);
+  std::printf("relative error %.4f after %d passes\n", r.relError, r.passes);
+  EXPECT_LE(r.relError, 0.2);
+  EXPECT_GE(r.passes, s.minPasses);
+  EXPECT_LT(r.passes, 200);
+}
+
+// Results do not depend on the number of threads.
+TEST(ReferenceIntegrator, DeterministicAcrossThreadCounts) {
+  const app::LoadedScene scene = slab("5x5");
+  sss::ReferenceSettings s;
+  s.maxPasses = 3;
+  s.pointsPerPass = 2048;
+  s.threads = 1;
+  const sss::ReferenceResult one = sss::renderReference(scene.config.scene, scene.config.render, s);
+  s.threads = 2;
+  const sss::ReferenceResult two = sss::renderReference(scene.config.scene, scene.config.render, s);
+  for (std::size_t i = 0; i < one.radiance.pixels.size(); ++i) EXPECT_EQ(one.radiance.pixels[i], two.radiance.pixels[i]);
+}
+
+// (c) Bad options: one line each, from the options check and from the command line.
+TEST(ReferenceIntegrator, RefusesBadOptions) {
+  app::ReferenceOptions o;
+  o.out = "ref.exr";
+  o.spp = 0;
+  EXPECT_EQ(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }), "--spp: must be at least 1");
+  o.spp = app::kNotGiven;
+  o.relError = 0.0;
+  EXPECT_EQ(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }),
+            "--rel-error: must be a positive number");
+  o.relError = -0.1;
+  EXPECT_EQ(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }),
+            "--rel-error: must be a positive number");
+  o.relError = std::nan("");
+  EXPECT_NE(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }).find("--spp S"), std::string::npos);
+  sss::ReferenceSettings s;  // the library refuses too
+  const app::LoadedScene scene = slab("4x4");
+  s.maxPasses = 1;
+  s.pointsPerPass = 0;
+  EXPECT_EQ(test::errorOf<std::invalid_argument>(
+                [&] { sss::renderReference(scene.config.scene, scene.config.render, s); }),
+            "--points: must be at least 1");
+
+  test::TempDir dir;
+  const std::string out = (dir.path() / "ref.exr").string();
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"reference", "--preset", "slab", "--spp", "0", "--out", out},
+        std::vector<std::string>{"reference", "--preset", "slab", "--rel-error", "0", "--out", out},
+        std::vector<std::string>{"reference", "--preset", "slab", "--rel-error", "-1", "--out", out}}) {
+    const test::CommandResult r = test::runTallow(bad);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// The command writes REF.exr and REF_stderr.exr with the metadata.
+TEST(ReferenceIntegrator, CommandWritesImageAndStandardError) {
+  test::TempDir dir;
+  const std::string out = (dir.path() / "ref.exr").string();
+  const test::CommandResult r = test::runTallow(
+      {"reference", "--preset", "slab", "--size", "6x4", "--spp", "3", "--points", "1024", "--seed", "5", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const gpu::Image image = gpu::readExr(out);
+  const gpu::Image se = gpu::readExr(app::standardErrorPath(out));
+  EXPECT_EQ(image.width, 6);
+  EXPECT_EQ(image.height, 4);
+  EXPECT_EQ(se.width, 6);
+  EXPECT_NE(r.out.find("3 pass(es)"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace tallow
