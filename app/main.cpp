@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   referenceCmd->add_option("--time", reference.timeS, "animation time [s]");
   referenceCmd->add_option("--spp", reference.spp, "passes (each with fresh surface points)");
   referenceCmd->add_option("--rel-error", reference.relError, "stop at this relative standard error (docs/reference.md)");
-  referenceCmd->add_option("--points", reference.points, "surface points per translucent object and pass");
+  referenceCmd->add_option("--points", reference.points, "surface points per translucent object and pass (0: automatic)");
   referenceCmd->add_option("--seed", reference.seed, "random seed");
   referenceCmd->add_option("--threads", reference.threads, "worker threads (0: all cores)");
 

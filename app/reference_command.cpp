@@ -38,7 +38,7 @@ void validateReferenceOptions(const ReferenceOptions& options) {
     throw InputError("--rel-error: must be a positive number");
   if (options.spp == kNotGiven && std::isnan(options.relError))
     throw InputError("reference: give --spp S (passes) or --rel-error E (relative standard error)");
-  if (options.points < 1) throw InputError("--points: must be at least 1");
+  if (options.points < 0) throw InputError("--points: must be 0 (automatic) or more");
   if (options.threads < 0) throw InputError("--threads: must be at least 0");
   if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
 }
@@ -83,6 +83,7 @@ int runReference(const ReferenceOptions& options) {
       {"tallow.spp", std::to_string(r.passes)},
       {"tallow.passes", std::to_string(r.passes)},
       {"tallow.points_per_pass", std::to_string(r.pointsPerPass)},
+      {"tallow.near_field_points", number(r.nearFieldPoints)},
       {"tallow.rel_error", number(r.relError)},
       {"tallow.rel_error_statistic", sss::kReferenceErrorStatistic},
       {"tallow.seed", std::to_string(options.seed)},
@@ -90,6 +91,12 @@ int runReference(const ReferenceOptions& options) {
       {"tallow.model", std::string(sss::bssrdfModelName(loaded.config.render.sss.model))},
       {"tallow.triangles", std::to_string(r.triangles)},
       {"tallow.seconds", number(r.seconds)}};
+  if (r.translucentPixels > 0 && r.nearFieldPoints < 1.0)
+    std::fprintf(stderr,
+                 "tallow: warning: only %.2g surface point(s) per pass fall within 1/sigma_t' of a pixel's surface point: "
+                 "the mean and its error estimate are biased low until many passes have run; raise --points "
+                 "(or leave it out to choose it automatically)\n",
+                 r.nearFieldPoints);
   gpu::writeExr(out, r.radiance, gpu::ExrPixelType::Float, attributes);
   gpu::writeExr(standardErrorPath(out), r.standardError, gpu::ExrPixelType::Float, attributes);
   std::printf("tallow: reference of %s (%dx%d): %d pass(es) x %d points, relative standard error %s, %.1f s -> %s\n",

@@ -21,14 +21,14 @@ struct ReferenceOptions {
   double timeS = 0.0;
   int spp = kNotGiven;  ///< passes (--spp)
   double relError = std::numeric_limits<double>::quiet_NaN();  ///< --rel-error; NaN: not given
-  int points = 16384;       ///< --points: surface points per translucent object and pass
+  int points = 0;           ///< --points: surface points per translucent object and pass; 0: automatic
   std::uint64_t seed = 1;   ///< --seed
   int threads = 0;          ///< --threads; 0: all cores
   std::string out;          ///< REF.exr
 };
 
 /// Checks the options that need no scene; throws InputError with one line (`--spp: must be at
-/// least 1`, `--rel-error: must be a positive number`, neither given, --points < 1, …).
+/// least 1`, `--rel-error: must be a positive number`, neither given, --points < 0, …).
 void validateReferenceOptions(const ReferenceOptions& options);
 
 /// REF_stderr.exr beside REF.exr.

@@ -217,6 +217,8 @@ struct TranslucentObject {
   std::array<double, 3> sigmaA{}, sigmaS{}, g{};
   double eta = 1.3;
   double rouletteRate = 0.0;  ///< the smallest band's σ_tr [mm⁻¹]
+  double sigmaTpMax = 0.0;    ///< the largest band's σ_t' [mm⁻¹]
+  int points = 0;             ///< M of this object
 };
 
 /// One surface point of a pass and the lights that reach it.
@@ -224,6 +226,53 @@ struct LitPoint {
   glm::dvec3 xMm, n;
   std::vector<std::pair<glm::dvec3, glm::dvec3>> lights;  ///< (w_l, L F_t(cos θ_l) cos θ_l per band)
 };
+
+/// A cell of the uniform grid the lit points of one object and pass are sorted into: the bounds
+/// of its points [mm] and their range in the sorted list. Russian roulette is first played per
+/// cell with Q = exp(−σ d_min) (d_min: distance from x_o to the bounds, so Q ≥ every q_i inside),
+/// then per point with q_i/Q: each point survives with probability q_i as before, and far cells
+/// cost one test each.
+struct PointCell {
+  glm::dvec3 lo{std::numeric_limits<double>::max()}, hi{-std::numeric_limits<double>::max()};
+  std::size_t begin = 0, end = 0;
+};
+
+/// Sorts `points` by grid cell (edge ≥ 1/σ, at most 128 cells per axis) and returns the cells.
+std::vector<PointCell> sortIntoCells(std::vector<LitPoint>& points, double sigma) {
+  std::vector<PointCell> cells;
+  if (points.empty()) return cells;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const LitPoint& p : points) {
+    lo = glm::min(lo, p.xMm);
+    hi = glm::max(hi, p.xMm);
+  }
+  const glm::dvec3 extent = hi - lo;
+  const double largest = std::max({extent.x, extent.y, extent.z, 1e-9});
+  const double h = std::max(sigma > 0.0 ? 1.0 / sigma : largest, largest / 128.0);
+  auto key = [&](const glm::dvec3& x) {
+    const glm::dvec3 c = glm::floor((x - lo) / h);
+    const auto clampAxis = [](double v) { return static_cast<std::uint64_t>(std::clamp(v, 0.0, 1023.0)); };
+    return (clampAxis(c.x) << 20) | (clampAxis(c.y) << 10) | clampAxis(c.z);
+  };
+  std::vector<std::pair<std::uint64_t, std::size_t>> order(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) order[i] = {key(points[i].xMm), i};
+  std::sort(order.begin(), order.end());
+  std::vector<LitPoint> sorted;
+  sorted.reserve(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (i == 0 || order[i].first != order[i - 1].first) {
+      cells.emplace_back();
+      cells.back().begin = i;
+    }
+    sorted.push_back(std::move(points[order[i].second]));
+    PointCell& c = cells.back();
+    c.lo = glm::min(c.lo, sorted.back().xMm);
+    c.hi = glm::max(c.hi, sorted.back().xMm);
+    c.end = i + 1;
+  }
+  points = std::move(sorted);
+  return cells;
+}
 
 /// What a camera ray through a pixel centre sees; the same in every pass.
 struct PixelHit {
@@ -243,7 +292,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     throw std::invalid_argument("--rel-error: must be a positive number");
   if (settings.maxPasses == 0 && settings.relError == 0.0)
     throw std::invalid_argument("reference: give --spp S (passes) or --rel-error E (relative standard error)");
-  if (settings.pointsPerPass < 1) throw std::invalid_argument("--points: must be at least 1");
+  if (settings.pointsPerPass < 0) throw std::invalid_argument("--points: must be 0 (automatic) or more");
   if (settings.threads < 0) throw std::invalid_argument("--threads: must be at least 0");
   const auto start = std::chrono::steady_clock::now();
 
@@ -287,9 +336,17 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       t.sigmaA[static_cast<std::size_t>(c)] = o.material.sigma_a[c];
       t.sigmaS[static_cast<std::size_t>(c)] = o.material.sigma_s[c];
       t.g[static_cast<std::size_t>(c)] = o.material.g[c];
-      t.rouletteRate = std::min(t.rouletteRate, bssrdfCoefficients(o.material.sigma_a[c], o.material.sigma_s[c],
-                                                                   o.material.g[c], o.material.eta).sigma_tr);
+      const BssrdfCoefficients k =
+          bssrdfCoefficients(o.material.sigma_a[c], o.material.sigma_s[c], o.material.g[c], o.material.eta);
+      t.rouletteRate = std::min(t.rouletteRate, k.sigma_tr);
+      t.sigmaTpMax = std::max(t.sigmaTpMax, k.sigma_t_reduced);
     }
+    const double nearArea = t.areaMm2 * t.sigmaTpMax * t.sigmaTpMax / kPi;  // A σ_t'²/π
+    if (settings.pointsPerPass > 0)
+      t.points = settings.pointsPerPass;
+    else
+      t.points = static_cast<int>(std::clamp(std::ceil(kNearFieldTarget * nearArea), static_cast<double>(kMinAutoPoints),
+                                             static_cast<double>(kMaxAutoPoints)));
     if (!std::isfinite(t.rouletteRate) || t.rouletteRate < 0.0) t.rouletteRate = 0.0;
     slotOfMesh[k] = static_cast<int>(objects.size());
     if (sum > 0.0) objects.push_back(std::move(t));
@@ -358,16 +415,21 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
   });
 
   ReferenceResult result;
-  result.pointsPerPass = settings.pointsPerPass;
+  for (const TranslucentObject& t : objects) {
+    result.pointsPerPass = std::max(result.pointsPerPass, t.points);
+    const double near = t.points * kPi / (t.areaMm2 * t.sigmaTpMax * t.sigmaTpMax);
+    result.nearFieldPoints = result.nearFieldPoints == 0.0 ? near : std::min(result.nearFieldPoints, near);
+  }
+  if (objects.empty()) result.pointsPerPass = settings.pointsPerPass;
   result.triangles = rays.triangles();
   for (const PixelHit& p : pixels) result.translucentPixels += p.slot >= 0 ? 1 : 0;
   const std::size_t count = pixels.size();
   std::vector<glm::dvec3> mean(count, glm::dvec3(0.0)), m2(count, glm::dvec3(0.0));
-  const int M = settings.pointsPerPass;
   const int passCap = settings.maxPasses > 0 ? settings.maxPasses : settings.passLimit;
   const int minPasses = std::max(settings.minPasses, 2);
 
   std::vector<std::vector<LitPoint>> lit(objects.size());
+  std::vector<std::vector<PointCell>> cellsOf(objects.size());
   int passes = 0;
   double relError = std::numeric_limits<double>::infinity();
   while (passes < passCap) {
@@ -375,6 +437,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     // 1. M points per translucent object, uniform by area, each with its lights and visibility.
     for (std::size_t s = 0; s < objects.size(); ++s) {
       const TranslucentObject& t = objects[s];
+      const int M = t.points;
       std::vector<LitPoint> points(static_cast<std::size_t>(M));
       std::vector<char> any(static_cast<std::size_t>(M), 0);
       tbb::parallel_for(tbb::blocked_range<int>(0, M, 256), [&](const tbb::blocked_range<int>& r) {
@@ -411,6 +474,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       lit[s].clear();
       for (int i = 0; i < M; ++i)
         if (any[static_cast<std::size_t>(i)]) lit[s].push_back(std::move(points[static_cast<std::size_t>(i)]));
+      cellsOf[s] = sortIntoCells(lit[s], t.rouletteRate);
     }
 
     // 2. Every translucent pixel gathers the object's lit points (Eq. 7 by area sampling), Russian
@@ -426,11 +490,18 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
             const TranslucentObject& t = objects[static_cast<std::size_t>(px.slot)];
             const std::vector<LitPoint>& points = lit[static_cast<std::size_t>(px.slot)];
             glm::dvec3 sum(0.0);
-            for (std::size_t i = 0; i < points.size(); ++i) {
+            const std::vector<PointCell>& cells = cellsOf[static_cast<std::size_t>(px.slot)];
+            for (std::size_t ci = 0; ci < cells.size(); ++ci) {
+             const PointCell& cell = cells[ci];
+             const glm::dvec3 nearest = glm::clamp(px.xoMm, cell.lo, cell.hi);
+             const double cellSurvive = std::exp(-t.rouletteRate * glm::length(px.xoMm - nearest));
+             if (cellSurvive < 1.0 && unit(streamHash(settings.seed, 3, pass, index, ci)) >= cellSurvive) continue;
+             for (std::size_t i = cell.begin; i < cell.end; ++i) {
               const LitPoint& p = points[i];
               const double r = glm::length(px.xoMm - p.xMm);
               const double survive = std::exp(-t.rouletteRate * r);
-              if (survive < 1.0 && unit(streamHash(settings.seed, 2, pass, index, i)) >= survive) continue;
+              const double conditional = survive / cellSurvive;
+              if (conditional < 1.0 && unit(streamHash(settings.seed, 2, pass, index, i)) >= conditional) continue;
               for (const auto& [wl, e] : p.lights) {
                 for (int c = 0; c < 3; ++c) {
                   const auto cc = static_cast<std::size_t>(c);
@@ -439,8 +510,9 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
                   sum[c] += evaluateBssrdf<double>(model, cfg).sdClamped * e[c] / survive;
                 }
               }
+             }
             }
-            const glm::dvec3 B = kPi * t.areaMm2 / M * sum;
+            const glm::dvec3 B = kPi * t.areaMm2 / t.points * sum;
             value += px.transmit * B;
           }
           const glm::dvec3 delta = value - mean[index];

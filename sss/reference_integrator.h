@@ -20,7 +20,9 @@ struct ReferenceSettings {
   double timeS = 0.0;           ///< animation time: field objects meshed and flame lights placed at t
   int maxPasses = 0;            ///< stop after this many passes (0: no pass limit)
   double relError = 0.0;        ///< stop once the relative standard error is at most this (0: off)
-  int pointsPerPass = 16384;    ///< M, surface points per translucent object and pass (≥ 1)
+  /// M, surface points per translucent object and pass (≥ 1); 0: per object, enough for
+  /// kNearFieldTarget expected points per pass within 1/σ_t' of each x_o (see nearFieldPoints).
+  int pointsPerPass = 0;
   std::uint64_t seed = 1;       ///< the random stream; results do not depend on the thread count
   int threads = 0;              ///< 0: TBB's default
   int minPasses = 8;            ///< with relError: passes before the error estimate is trusted (≥ 2)
@@ -33,11 +35,20 @@ struct ReferenceSettings {
 /// It predicts the relative RMSE of the reference itself in the bench's colour-band metric.
 inline constexpr const char* kReferenceErrorStatistic = "relative RMS standard error over translucent pixels";
 
+/// The estimator's distribution is skewed by the near-field peak of S_d (r ≲ 1/σ_t'): with fewer
+/// than about one point per pass within 1/σ_t' of x_o, passes usually miss the peak and both the
+/// mean and the standard error come out low. nearFieldPoints = M π / (A σ_t'²) (σ_t' of the band
+/// with the largest one, A the object's area in mm²) is that expected count on a flat surface.
+inline constexpr double kNearFieldTarget = 4.0;
+inline constexpr int kMinAutoPoints = 4096;
+inline constexpr int kMaxAutoPoints = 1 << 22;
+
 struct ReferenceResult {
   gpu::Image radiance;       ///< linear RGB, alpha 1: the mean of the passes
   gpu::Image standardError;  ///< per pixel and band, the standard error of that mean (0 after one pass)
   int passes = 0;
-  int pointsPerPass = 0;
+  int pointsPerPass = 0;     ///< M (the largest over objects when chosen per object)
+  double nearFieldPoints = 0.0;  ///< the smallest over translucent objects (0 without any)
   double relError = 0.0;     ///< ε above after the last pass (infinity after one pass with translucent pixels)
   int translucentPixels = 0;
   std::size_t triangles = 0;  ///< in the Embree scene
@@ -50,7 +61,7 @@ using ReferenceProgress = std::function<bool(int passes, double relError)>;
 /// Renders `scene` (lights as loaded: environment lights included, flame lights moved to timeS)
 /// with `render`'s size, camera aspect, sss.model, method, specular, shadows, ambient and background.
 /// Throws std::invalid_argument (one line) on bad settings: neither stop given, maxPasses < 0,
-/// relError < 0 or not finite, pointsPerPass < 1, size < 1; std::runtime_error when a mesh or the
+/// relError < 0 or not finite, pointsPerPass < 0, size < 1; std::runtime_error when a mesh or the
 /// environment map cannot be read.
 ReferenceResult renderReference(const Scene& scene, const RenderSettings& render, const ReferenceSettings& settings,
                                 const ReferenceProgress& progress = {});
