@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 #include "app/input_error.h"
 #include "app/reference_command.h"
 #include "app/setup.h"
+#include "gpu/hdr_io.h"
 #include "gpu/image_io.h"
 #include "sss/bssrdf.h"
 #include "sss/reference_integrator.h"
@@ -79,6 +81,33 @@ TEST(ReferenceIntegrator, ObliquelyLitSlabFollowsLambertsCosine) {
     EXPECT_LT(se[c], 0.06 * expected);
     EXPECT_NEAR(centre[c], expected, 3.0 * se[c] + 0.002 * expected) << "band " << c;
   }
+}
+
+// The specular term: with no light but a constant environment, a translucent surface seen head-on
+// shows F_r(0) L_env (as surface.frag: the environment in the mirror direction).
+TEST(ReferenceIntegrator, SpecularReflectionOfAConstantEnvironment) {
+  test::TempDir dir;
+  const std::filesystem::path file = dir.path() / "constant.hdr";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
+    for (int i = 0; i < 8; ++i) out << static_cast<char>(128) << static_cast<char>(128) << static_cast<char>(128)
+                                    << static_cast<char>(129);
+  }
+  const float L = gpu::readHdr(file).at(0, 0).x;
+  ASSERT_GT(L, 0.9f);
+  app::LoadedScene scene = slab("3x3");
+  scene.config.scene.lights.clear();
+  sss::Environment env;
+  env.file = file;
+  env.scale = 2.0f;
+  scene.config.scene.environment = env;
+  const sss::ReferenceResult r = integrate(scene, 2, 4096, 1);
+  const double eta = scene.config.scene.objects.at(0).material.eta;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.radiance.at(1, 1)[c], sss::fresnelReflectance(1.0, eta) * 2.0 * L, 1e-6);
+  EXPECT_EQ(r.relError, 0.0);
+  scene.config.render.specular = false;
+  EXPECT_EQ(integrate(scene, 2, 4096, 1).radiance.at(1, 1), glm::vec4(0, 0, 0, 1));
 }
 
 // (b) Two independent runs differ per pixel by about √2 × the estimated standard error (with the
