@@ -83,6 +83,41 @@ TEST(ReferenceIntegrator, ObliquelyLitSlabFollowsLambertsCosine) {
   }
 }
 
+// A point light of intensity I at height h above the slab's centre: Eq. 7 with L = I/d² becomes, below
+// the light, the radial integral B = π ∫ S_d(ρ) F_t(cos θ) I cos θ/d² 2πρ dρ, cos θ = h/d,
+// d² = ρ² + h², integrated here by the midpoint rule on a fine log-spaced grid (S_d from the shared
+// code: this checks the integrator's point-light geometry, inverse square and shadow rays).
+TEST(ReferenceIntegrator, PointLightAboveTheSlab) {
+  app::LoadedScene scene = slab("3x3");
+  const double h = 0.02, I = 0.5;  // metres, W/sr
+  sss::Light& light = scene.config.scene.lights.at(0);
+  light.kind = sss::LightKind::Point;
+  light.position = glm::vec3(0.0f, 0.05f + static_cast<float>(h), 0.0f);
+  light.intensity = glm::vec3(static_cast<float>(I));
+  const sss::ReferenceResult r = integrate(scene, 16, 1 << 20, 3);
+  const sss::Material& m = scene.config.scene.objects.at(0).material;
+  const glm::vec4 centre = r.radiance.at(1, 1), se = r.standardError.at(1, 1);
+  for (int c = 0; c < 3; ++c) {
+    double B = 0.0;  // W/m²; lengths of S_d in mm
+    const int steps = 20000;
+    const double lo = std::log(1e-4), hi = std::log(300.0);  // ρ in mm
+    for (int k = 0; k < steps; ++k) {
+      const double a = std::exp(lo + (hi - lo) * k / steps), b = std::exp(lo + (hi - lo) * (k + 1) / steps);
+      const double rho = 0.5 * (a + b);
+      const double dMm = std::sqrt(rho * rho + h * h * 1e6), cosTheta = h * 1e3 / dMm;
+      sss::BssrdfConfig cfg{glm::dvec3(rho, 0, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), glm::dvec3(0.0),
+                            glm::dvec3(0, 0, 1), m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta};
+      const double sd = sss::evaluateBssrdf<double>(sss::BssrdfModel::Standard, cfg).sdClamped;
+      const double E = I * cosTheta / (dMm * dMm * 1e-6) * sss::fresnelTransmittance(cosTheta, m.eta);
+      B += kPi * sd * E * 2.0 * kPi * rho * (b - a);
+    }
+    const double expected = test::normalTransmittance(m.eta) / kPi * B;
+    std::printf("band %d point light: reference %.6g +- %.3g, numerical %.6g\n", c, centre[c], se[c], expected);
+    EXPECT_LT(se[c], 0.06 * expected);
+    EXPECT_NEAR(centre[c], expected, 3.0 * se[c] + 0.002 * expected) << "band " << c;
+  }
+}
+
 // The specular term: with no light but a constant environment, a translucent surface seen head-on
 // shows F_r(0) L_env (as surface.frag: the environment in the mirror direction).
 TEST(ReferenceIntegrator, SpecularReflectionOfAConstantEnvironment) {
