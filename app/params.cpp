@@ -186,6 +186,13 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "shortest mean free path 1/σ_tr, against pearling (the paper's §5)."),
                                false),
                    [](auto& c) -> auto& { return c.render.sss.lightMapAuto; }));
+  r.add(bind<bool>(withDefault(declare("sss.projected_area", "bool", "",
+                                       "Directional lights: the estimator's samples lie on the light's view plane, "
+                                       "whose area is cos θ_ℓ times the surface's; on: divide by it (Eq. 7 exactly), "
+                                       "off: the paper's Eq. 9 as printed, which loses a factor cos θ_ℓ at grazing "
+                                       "light."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.sss.projectedArea; }));
   {
     Param p = withDefault(declare("sss.gather", "enum", "",
                                   "How step 2 runs the estimator: fragment (the paper: the maps' texels as fragments "

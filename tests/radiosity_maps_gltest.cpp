@@ -86,6 +86,49 @@ TEST(RadiosityMaps, NoCacheVariantMatchesTheSlabToo) {
   }
 }
 
+/// Unpolarised Fresnel transmittance from outside at incidence cos θ, written out independently.
+double fresnelT(double cosTheta, double eta) {
+  const double sinT2 = (1.0 - cosTheta * cosTheta) / (eta * eta), cosT = std::sqrt(1.0 - sinT2);
+  const double rs = (cosTheta - eta * cosT) / (cosTheta + eta * cosT);
+  const double rp = (eta * cosTheta - cosT) / (eta * cosTheta + cosT);
+  return 1.0 - 0.5 * (rs * rs + rp * rp);
+}
+
+TEST(RadiosityMaps, SlabLitObliquelyKeepsLambertsCosineOnce) {
+  // Light 60° from the normal: Eq. 7 gives B = E cos θ F_t(θ) R_d (the standard dipole has no
+  // ω dependence), seen straight down as L = F_t(0°)/π · B. The samples lie on the light's view
+  // plane, whose area element is cos θ times the surface's; with sss.projected_area the estimator
+  // divides by it, and the paper's Eq. 9 as printed (off) keeps a further cos θ = 1/2. The two
+  // runs use the same seeds, so their ratio is exactly 1/cos θ per texel.
+  // Open (issue 6): the corrected estimate is still 7–11% below Eq. 7 at 60° (more in the blue,
+  // whose 1/σ_tr is shortest), against 0.1% at normal incidence; asserted within 15% here.
+  const double cosTheta = 0.5;
+  std::vector<gpu::Image> images;
+  for (const bool projected : {true, false}) {
+    PresetSession s("slab", {"render.width=48", "render.height=48", "sss.maps=6", "sss.samples=32",
+                             "sss.map_size=128", "sss.light_map_size=512", "light.direction=0.8660254,0.5,0",
+                             std::string("sss.projected_area=") + (projected ? "true" : "false")});
+    gpu::Image image;
+    for (int f = 0; f < 4; ++f) image = s.render();
+    images.push_back(image);
+    if (!projected) continue;
+    const sss::Material& m = s.scene().objects[0].material;
+    for (int c = 0; c < 3; ++c) {
+      const double rd = test::jensenTotalRd(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta);
+      const double expected =
+          test::normalTransmittance(m.eta) / 3.14159265358979 * cosTheta * fresnelT(cosTheta, m.eta) * rd;
+      std::printf("[ maps ] 60° slab band %d: L / (F_t(0) cos θ F_t(θ) E R_d/π) = %.4f\n", c,
+                  centreMean(image, c) / expected);
+      EXPECT_NEAR(centreMean(image, c) / expected, 1.0, 0.15) << "band " << c;
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double ratio = centreMean(images[0], c) / centreMean(images[1], c);
+    std::printf("[ maps ] 60° slab band %d: projected / paper = %.5f\n", c, ratio);
+    EXPECT_NEAR(ratio, 1.0 / cosTheta, 1e-3) << "band " << c;
+  }
+}
+
 // --- The GPU estimator is the shared code ----------------------------------------------------------
 
 TEST(RadiosityMaps, GpuEstimatorEqualsTheCpuInstantiationAtChosenTexels) {

@@ -16,6 +16,7 @@ uniform int uBssrdfModel;               // BSSRDF_MODEL_*
 uniform int uSamples;                   // N
 uniform int uFrame;                     // frame index of this accumulation (seeds)
 uniform int uStereographic;             // 1: Eqs. 13–14 for point lights
+uniform int uProjectedArea;             // 1: divide by the view plane's Jacobian cos θ_ℓ (sss.projected_area)
 
 const float MM_PER_M = 1000.0;
 
@@ -41,7 +42,14 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
         // light from the texel: the texel's centre would quantise r to the G-buffer grid, which
         // biases B where x_o sits at a fixed offset in that grid (an aligned camera, a flat slab).
         vec3 xi = s.xj + dot(g.position * MM_PER_M - s.xj, w) * w;
-        acc += sssRadiosityTerm(uBssrdfModel, xi, normalize(g.normal), w, xo, no, k, s.weight);
+        vec3 ni = normalize(g.normal);
+        float term = sssRadiosityTerm(uBssrdfModel, xi, ni, w, xo, no, k, s.weight);
+        // The samples are spread over the light's view plane, whose area element is cos θ_ℓ times
+        // the surface's (dA_view = cos θ_ℓ dA): Eq. 7 over the view plane is Eq. 9 divided by
+        // cos θ_ℓ. The paper's Eq. 9 keeps the cosine (uProjectedArea = 0), which darkens surfaces
+        // lit at grazing angles by a further cos θ_ℓ (its §4, Fig. 8: "light missing").
+        if (uProjectedArea != 0 && term > 0.0) term /= max(dot(ni, w), 1e-3);
+        acc += term;
       }
       sum += sssRadiosityFromSum(acc, uSssDirIrradiance[l][c], uSamples);
     }
