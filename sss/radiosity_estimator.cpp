@@ -18,13 +18,7 @@ using uint = std::uint32_t;
 using real = float;
 using real2 = glm::vec2;
 using real3 = glm::vec3;
-#include "shaders/bssrdf/real.glsl"
-#include "shaders/bssrdf/fresnel.glsl"
-#include "shaders/bssrdf/coefficients.glsl"
-#include "shaders/bssrdf/standard_dipole.glsl"
-#include "shaders/bssrdf/directional_dipole.glsl"
-#include "shaders/bssrdf/photon_beam_diffusion.glsl"
-#include "shaders/bssrdf/bssrdf.glsl"
+#include "sss/bssrdf_models.inc"
 #include "shaders/sss/estimator.glsl"
 }  // namespace tallow::sss::estimator_f32
 
@@ -34,13 +28,7 @@ using uint = std::uint32_t;
 using real = double;
 using real2 = glm::dvec2;
 using real3 = glm::dvec3;
-#include "shaders/bssrdf/real.glsl"
-#include "shaders/bssrdf/fresnel.glsl"
-#include "shaders/bssrdf/coefficients.glsl"
-#include "shaders/bssrdf/standard_dipole.glsl"
-#include "shaders/bssrdf/directional_dipole.glsl"
-#include "shaders/bssrdf/photon_beam_diffusion.glsl"
-#include "shaders/bssrdf/bssrdf.glsl"
+#include "sss/bssrdf_models.inc"
 #include "shaders/sss/estimator.glsl"
 }  // namespace tallow::sss::estimator_f64
 

@@ -326,8 +326,8 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   const float clearPosition[4] = {0, 0, 0, 0};  // tag 0: nothing
   const float one = 1.0f;
   const auto drawAll = [&](const std::vector<glm::mat4>& layers) {
-    layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
+    gbufferViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, gbufferViews_.id());
     gbufferProgram_.set("uLayerBase", 0);
     for (const DrawItem& item : geometry.items()) {
       const int s = slots_[static_cast<std::size_t>(item.objectIndex)];
@@ -427,7 +427,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   LayeredState state;
   glViewport(0, 0, size, size);
   const auto drawTranslucent = [&](gpu::Program& program) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, mapLayerViews_.id());
     program.set("uLayerBase", 0);
     for (const DrawItem& item : geometry.items()) {
       const int slot = slots_[static_cast<std::size_t>(item.objectIndex)];
@@ -443,8 +443,19 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     views_ = scene.mapDirections.empty() ? radiosityMapViews(k, sphere_.centre, sphere_.radius)
                                          : radiosityMapViews(scene.mapDirections, sphere_.centre, sphere_.radius);
     std::vector<glm::mat4> layers;
-    for (const MapView& v : views_) layers.push_back(v.viewProjection);
-    layerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    // algorithm1.glsl's MapViewGpu; the orthographic depth spans 2·radius (radiosityMapViews).
+    struct CameraView {
+      glm::mat4 toTexture;
+      glm::vec4 direction, depthScale;
+    };
+    std::vector<CameraView> camera;
+    const glm::vec4 depthPerMetre(0.5f / std::max(sphere_.radius, 1e-9f));
+    for (const MapView& v : views_) {
+      layers.push_back(v.viewProjection);
+      camera.push_back({v.toTexture, glm::vec4(v.direction, 0.0f), depthPerMetre});
+    }
+    mapLayerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    cameraViews_ = gpu::Buffer(camera.size() * sizeof(CameraView), camera.data());
     const float zero[4] = {0, 0, 0, 0};
     const float one = 1.0f;
     glClearTexImage(maps_.id(), 0, GL_RGBA, GL_FLOAT, zero);

@@ -96,6 +96,9 @@ class RadiosityMaps {
   int frames() const { return frames_; }   ///< F, frames accumulated in the maps
   int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
   const std::vector<MapView>& views() const { return views_; }
+  /// The K views as shaders/sss/algorithm1.glsl's MapViewGpu array (std430: world → [0,1]³,
+  /// direction, depth units per metre), built once per accumulation with the views.
+  const gpu::Buffer& cameraViews() const { return cameraViews_; }
   BoundingSphere sphere() const { return sphere_; }
   /// The maps (RGBA32F 2D array with mipmaps: Σ of B_N over F frames) and their depth (2D array).
   const gpu::Texture& maps() const { return maps_; }
@@ -130,7 +133,9 @@ class RadiosityMaps {
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
   gpu::Texture maps_, mapDepth_;
   gpu::Texture mapPosition_, mapNormal_;  ///< the maps' G-buffer (compute gather only)
-  gpu::Buffer layerViews_;  ///< std430 mat4 per layer of the pass being drawn
+  gpu::Buffer gbufferViews_;   ///< std430 mat4 per light G-buffer layer being drawn
+  gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered.geom)
+  gpu::Buffer cameraViews_;    ///< the maps as Algorithm 1 reads them (cameraViews())
   std::vector<MapView> views_;
   std::vector<glm::mat4> dirMatrices_;  ///< world → [0,1]³ of each directional light's G-buffer
   std::vector<glm::vec3> dirTangent_, dirBitangent_;

@@ -93,11 +93,16 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
 
 std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSettings& settings,
                                              double timeS) const {
+  return planFrame(scene, settings, timeS, mapKey(scene, settings, timeS));
+}
+
+std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
+                                             const std::string& mapStateKey) const {
   std::vector<PlannedPass> passes = plan(scene, settings);
   if (!fields_->stale(timeS, settings.fieldRes))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("field.", 0) == 0; });
   // Converged: nothing the maps depend on changed and F reached sss.frames; only step 3 runs.
-  if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapKey(scene, settings, timeS), settings))
+  if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapStateKey, settings))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sss.", 0) == 0; });
   return passes;
 }
@@ -132,7 +137,8 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   geometry_.update(scene);
   timer_.beginFrame();
   shadows_.reset(scene.lights.size());
-  for (const PlannedPass& pass : planFrame(scene, settings, timeS)) {
+  const std::string key = mapKey(scene, settings, timeS);  // once: the plan and the G-buffer pass share it
+  for (const PlannedPass& pass : planFrame(scene, settings, timeS, key)) {
     gpu::GpuScope scope(timer_, pass.name);
     if (pass.name == "field.sample") {
       fields_->sample(timeS, settings.fieldRes, geometry_);
@@ -145,7 +151,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       shadows_.renderPoint(scene, settings, geometry_);
     } else if (pass.name == "sss.light_gbuffer") {
       if (!maps_) maps_ = std::make_unique<RadiosityMaps>(shaders_);
-      maps_->renderLightGBuffers(scene, settings, geometry_, mapKey(scene, settings, timeS));
+      maps_->renderLightGBuffers(scene, settings, geometry_, key);
     } else if (pass.name == "sss.maps") {
       maps_->renderMaps(scene, settings, geometry_);
     } else if (pass.name == "surface") {

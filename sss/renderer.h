@@ -74,6 +74,9 @@ class Renderer {
   void ensureTargets(int width, int height);
   /// What the radiosity maps depend on at time t (RadiosityMaps::stateKey).
   std::string mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const;
+  /// planFrame with the maps' state key already computed.
+  std::vector<PlannedPass> planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
+                                     const std::string& mapStateKey) const;
 
   SceneGeometry geometry_;
   std::unique_ptr<FieldObjects> fields_;

@@ -15,12 +15,6 @@ constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
 constexpr GLuint kMapViewsBinding = 5;  // shaders/sss/algorithm1.glsl
 
-/// std430 layout of algorithm1.glsl's MapViewGpu.
-struct MapViewGpu {
-  glm::mat4 toTexture;
-  glm::vec4 direction;
-  glm::vec4 depthScale;
-};
 }  // namespace
 
 SurfacePass::SurfacePass(const gpu::ShaderLibrary& shaders)
@@ -109,18 +103,11 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
   if (noCache) noCache->setGatherUniforms(p, scene, settings, kGatherFirstUnit, frame);
   p.set("uMaps", static_cast<int>(kMapsUnit));
   p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
-  gpu::Buffer mapViews;
   if (maps) {
     // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
     const float radius = maps->sphere().radius;
-    std::vector<MapViewGpu> views;
-    for (const MapView& v : maps->views()) {
-      // The orthographic depth spans 2·radius (radiosityMapViews): depth units per metre.
-      views.push_back({v.toTexture, glm::vec4(v.direction, 0.0f), glm::vec4(0.5f / std::max(radius, 1e-9f))});
-    }
-    mapViews = gpu::Buffer(views.size() * sizeof(MapViewGpu), views.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, mapViews.id());
-    p.set("uMapCount", static_cast<int>(views.size()));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, maps->cameraViews().id());
+    p.set("uMapCount", static_cast<int>(maps->views().size()));
     p.set("uMapFrames", maps->frames());
     p.set("uEpsBias", settings.sss.bias * radius);
     p.set("uEpsComb", settings.sss.comb * radius);

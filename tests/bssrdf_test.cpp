@@ -23,13 +23,7 @@ using namespace glm;
 using real = double;
 using real2 = glm::dvec2;
 using real3 = glm::dvec3;
-#include "shaders/bssrdf/real.glsl"
-#include "shaders/bssrdf/fresnel.glsl"
-#include "shaders/bssrdf/coefficients.glsl"
-#include "shaders/bssrdf/standard_dipole.glsl"
-#include "shaders/bssrdf/directional_dipole.glsl"
-#include "shaders/bssrdf/photon_beam_diffusion.glsl"
-#include "shaders/bssrdf/bssrdf.glsl"
+#include "sss/bssrdf_models.inc"
 }  // namespace tallow::bssrdf_test_shared
 
 namespace tallow::sss {

@@ -30,9 +30,6 @@ using test::edgeUses;
 using test::faceCross;
 using test::signedVolume;
 
-
-
-
 /// Largest first-order distance |value| / |∇value| from the zero set over the mesh's vertices
 /// for which skip(p) is false.
 template <typename Skip>

@@ -36,9 +36,6 @@ using test::faceCross;
 using test::signedVolume;
 using test::SphereField;
 
-
-
-
 struct Quality {
   std::size_t triangles = 0, badEdges = 0, degenerate = 0, farVertices = 0, flipped = 0;
   double volume = 0.0, worstDistanceCells = 0.0;

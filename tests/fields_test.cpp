@@ -25,17 +25,12 @@ using test::faceCross;
 using test::signedVolume;
 using test::SphereField;
 
-
 Aabb cube(glm::dvec3 centre, double half) {
   Aabb box;
   box.extend(glm::vec3(centre - half));
   box.extend(glm::vec3(centre + half));
   return box;
 }
-
-
-
-
 
 // ---------------------------------------------------------------------------------------------
 // Blob field
