@@ -546,7 +546,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
       result.radiance.at(x, y) = glm::vec4(glm::vec3(mean[i]), 1.0f);
       const glm::dvec3 se = passes >= 2 ? glm::sqrt(m2[i] / ((passes - 1.0) * passes)) : glm::dvec3(0.0);
-      result.standardError.at(x, y) = glm::vec4(glm::vec3(se), 1.0f);
+      result.standardError.at(x, y) = glm::vec4(glm::vec3(se), pixels[i].slot >= 0 ? 1.0f : 0.0f);
     }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -45,7 +45,9 @@ inline constexpr int kMaxAutoPoints = 1 << 22;
 
 struct ReferenceResult {
   gpu::Image radiance;       ///< linear RGB, alpha 1: the mean of the passes
-  gpu::Image standardError;  ///< per pixel and band, the standard error of that mean (0 after one pass)
+  /// Per pixel and band, the standard error of that mean (0 after one pass); alpha 1 on the pixels
+  /// whose camera ray hits a translucent object (the bench's object pixels), 0 elsewhere.
+  gpu::Image standardError;
   int passes = 0;
   int pointsPerPass = 0;     ///< M (the largest over objects when chosen per object)
   double nearFieldPoints = 0.0;  ///< the smallest over translucent objects (0 without any)

@@ -49,6 +49,8 @@ TEST(ReferenceIntegrator, AnalyticSlabWithinItsOwnErrorBound) {
   const sss::ReferenceResult r = integrate(scene, 16, 1 << 20, 11);
   EXPECT_EQ(r.passes, 16);
   EXPECT_EQ(r.translucentPixels, 9);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) EXPECT_EQ(r.standardError.at(x, y).a, 1.0f) << "the object mask marks every pixel";
   const sss::Material& m = scene.config.scene.objects.at(0).material;
   const double E = scene.config.scene.lights.at(0).intensity.x;
   const double ft = test::normalTransmittance(m.eta);
@@ -143,6 +145,16 @@ TEST(ReferenceIntegrator, SpecularReflectionOfAConstantEnvironment) {
   EXPECT_EQ(r.relError, 0.0);
   scene.config.render.specular = false;
   EXPECT_EQ(integrate(scene, 2, 4096, 1).radiance.at(1, 1), glm::vec4(0, 0, 0, 1));
+}
+
+// The standard-error image's alpha is the bench's object mask: 0 where no translucent object is hit.
+TEST(ReferenceIntegrator, OpaqueObjectLeavesTheObjectMaskEmpty) {
+  app::LoadedScene scene = slab("3x3");
+  scene.config.scene.objects.at(0).translucent = false;
+  const sss::ReferenceResult r = integrate(scene, 2, 1024, 1);
+  EXPECT_EQ(r.translucentPixels, 0);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) EXPECT_EQ(r.standardError.at(x, y).a, 0.0f);
 }
 
 // (b) Two independent runs differ per pixel by about √2 × the estimated standard error (with the
