@@ -193,6 +193,13 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "light."),
                                true),
                    [](auto& c) -> auto& { return c.render.sss.projectedArea; }));
+  r.add(bind<bool>(withDefault(declare("sss.texel_plane", "bool", "",
+                                       "Where a sample meets the light G-buffer: on: x_i where the look-up line "
+                                       "meets the texel's tangent plane; off: the texel's depth along the line, "
+                                       "which leaves x_i up to half a texel x tan θ_ℓ off a tilted surface and loses "
+                                       "light at grazing incidence."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.sss.texelPlane; }));
   {
     Param p = withDefault(declare("sss.gather", "enum", "",
                                   "How step 2 runs the estimator: fragment (the paper: the maps' texels as fragments "

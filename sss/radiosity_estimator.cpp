@@ -115,6 +115,20 @@ glm::dvec3 planarLookupDirection(const glm::dvec3& xj, const glm::dvec3& xl) {
   return estimator_f64::sssPlanarLookupDirection(xj, xl);
 }
 
+template <class Real>
+glm::dvec3 pointOnTexel(const glm::dvec3& origin, const glm::dvec3& d, const glm::dvec3& p, const glm::dvec3& n,
+                        bool onPlane) {
+  if constexpr (std::is_same_v<Real, float>)
+    return glm::dvec3(estimator_f32::sssPointOnTexel(glm::vec3(origin), glm::vec3(d), glm::vec3(p), glm::vec3(n),
+                                                     onPlane ? 1 : 0));
+  else
+    return estimator_f64::sssPointOnTexel(origin, d, p, n, onPlane ? 1 : 0);
+}
+template glm::dvec3 pointOnTexel<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                        bool);
+template glm::dvec3 pointOnTexel<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                         bool);
+
 double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta) {
   return estimator_f64::sssSamplingSigmaTr(estimator_f64::bssrdfCoefficients(sigma_a, sigma_s, g, eta));
 }

@@ -49,6 +49,17 @@ extern template glm::dvec3 stereographicLookupDirection<double>(const glm::dvec3
                                                                  const glm::dvec3&);
 glm::dvec3 planarLookupDirection(const glm::dvec3& xj, const glm::dvec3& xl);
 
+/// x_i from the light G-buffer texel the look-up line origin + t·d (d unit) falls in, whose centre
+/// saw the surface point p with normal n: on the texel's tangent plane when onPlane (and the line
+/// is not grazing it), else at the texel's depth along the line (sss.texel_plane).
+template <class Real>
+glm::dvec3 pointOnTexel(const glm::dvec3& origin, const glm::dvec3& d, const glm::dvec3& p, const glm::dvec3& n,
+                        bool onPlane);
+extern template glm::dvec3 pointOnTexel<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                               const glm::dvec3&, bool);
+extern template glm::dvec3 pointOnTexel<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                const glm::dvec3&, bool);
+
 /// The rate of the exponential distance distribution (Eq. 12) of one band [mm⁻¹]: σ_tr (Eq. 10),
 /// bounded below by 10⁻³ σ_t' and 10⁻⁶ mm⁻¹ so that σ_a = 0 samples finite distances.
 double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta);

@@ -218,7 +218,7 @@ std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& se
   k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
   const SssSettings& s = settings.sss;
   k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
-    << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ',' << s.projectedArea << ';';
+    << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ',' << s.projectedArea << ',' << s.texelPlane << ';';
   for (const glm::vec3& d : scene.mapDirections) k << d.x << ',' << d.y << ',' << d.z << ';';
   for (const Light& l : scene.lights)
     k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
@@ -418,6 +418,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
   p.set("uFrame", frame);
   p.set("uStereographic", s.stereographic ? 1 : 0);
   p.set("uProjectedArea", s.projectedArea ? 1 : 0);
+  p.set("uTexelPlane", s.texelPlane ? 1 : 0);
 }
 
 void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {

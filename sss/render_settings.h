@@ -26,8 +26,9 @@ struct SssSettings {
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
   bool lightMapAuto = false;  ///< sss.light_map_auto: raise the light map size against pearling
-  bool computeGather = true;
-  bool projectedArea = true;  ///< sss.projected_area: the view plane's Jacobian (false: the paper's Eq. 9)  ///< sss.gather: false = the paper's fragment pass, true = compute pass
+  bool computeGather = true;  ///< sss.gather: false = the paper's fragment pass, true = compute pass
+  bool projectedArea = true;  ///< sss.projected_area: the view plane's Jacobian (false: the paper's Eq. 9)
+  bool texelPlane = true;     ///< sss.texel_plane: x_i on the light G-buffer texel's tangent plane (false: its depth)
 };
 
 struct RenderSettings {

@@ -143,6 +143,25 @@ TALLOW_FN real3 sssStereographicLookupDirection(real3 xo, real3 xj, real3 xl) {
   return a - real(2) * dot(a, l) * l;
 }
 
+// --- x_i from the light G-buffer texel (§3.1) -----------------------------------------------
+// The sample looks the G-buffer up along the line x(t) = origin + t d (d unit: toward the light from
+// x_j for a directional light, from the light through x_j for a point light); the texel holds the
+// surface point p seen at its centre and the normal n there. Keeping x_j's exact place across the
+// line and taking the texel's depth along it (onPlane = 0) puts x_i off a surface that is tilted
+// against the G-buffer's view plane by up to half a texel × tan θ_ℓ along d: r = |x_o − x_i| then
+// never comes closer than that offset, which cuts off the peak of S_d at r → 0 and loses light at
+// grazing incidence (on the slab lit at 60°, 7–11% with 512² texels; the loss falls as the texel's
+// square). onPlane = 1 intersects the line with the texel's tangent plane instead — exact on planes,
+// off by the surface's curvature × the squared offset elsewhere — unless the line runs within
+// SSS_TEXEL_PLANE_MIN_COS of the plane (grazing), where the extrapolation is not trusted.
+const real SSS_TEXEL_PLANE_MIN_COS = 0.2;
+TALLOW_FN real3 sssPointOnTexel(real3 origin, real3 d, real3 p, real3 n, int onPlane) {
+  real along = dot(p - origin, d);
+  real cosine = dot(d, n);
+  if (onPlane != 0 && abs(cosine) >= SSS_TEXEL_PLANE_MIN_COS) along = dot(p - origin, n) / cosine;
+  return origin + along * d;
+}
+
 // --- The term of Eq. 9 ------------------------------------------------------------------------
 // S_d(x_i, −ω_ℓ; x_o) F_t(−ω_ℓ) cos θ_ℓ · r/p(r, α) for one band, with
 //   S_d from bssrdfEvaluate (raw model value, clamped ≥ 0 by bssrdfClamped; no Fresnel inside),

@@ -17,6 +17,7 @@ uniform int uSamples;                   // N
 uniform int uFrame;                     // frame index of this accumulation (seeds)
 uniform int uStereographic;             // 1: Eqs. 13–14 for point lights
 uniform int uProjectedArea;             // 1: divide by the view plane's Jacobian cos θ_ℓ (sss.projected_area)
+uniform int uTexelPlane;                // 1: x_i on the G-buffer texel's tangent plane (sss.texel_plane)
 
 const float MM_PER_M = 1000.0;
 
@@ -38,11 +39,11 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
                                     uint(map), uint(uFrame), uint(c), uint(j));
         GSample g = directionalGBuffer(l, s.xj / MM_PER_M);
         if (g.tag != slot + 1) continue;  // another object or an occluder: x_j is not lit here
-        // x_i keeps x_j's exact place across the light's view and takes only its depth along the
-        // light from the texel: the texel's centre would quantise r to the G-buffer grid, which
-        // biases B where x_o sits at a fixed offset in that grid (an aligned camera, a flat slab).
-        vec3 xi = s.xj + dot(g.position * MM_PER_M - s.xj, w) * w;
+        // x_i keeps x_j's exact place across the light's view (the texel's centre would quantise
+        // r to the G-buffer grid, which biases B where x_o sits at a fixed offset in that grid: an
+        // aligned camera, a flat slab) and lies on the texel's tangent plane (sssPointOnTexel).
         vec3 ni = normalize(g.normal);
+        vec3 xi = sssPointOnTexel(s.xj, w, g.position * MM_PER_M, ni, uTexelPlane);
         float term = sssRadiosityTerm(uBssrdfModel, xi, ni, w, xo, no, k, s.weight);
         // The samples are spread over the light's view plane, whose area element is cos θ_ℓ times
         // the surface's (dA_view = cos θ_ℓ dA): Eq. 7 over the view plane is Eq. 9 divided by
@@ -64,14 +65,14 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
         vec3 dir = uStereographic != 0 ? sssStereographicLookupDirection(xo, s.xj, xl) : sssPlanarLookupDirection(s.xj, xl);
         GSample g = pointGBuffer(l, dir);
         if (g.tag != slot + 1) continue;
-        // The texel's distance from the light along the exact look-up direction (as above: no
-        // quantisation of the direction to the cube's texels).
-        vec3 xi = xl + normalize(dir) * length(g.position * MM_PER_M - xl);
+        // Along the exact look-up direction (as above: no quantisation of the direction to the
+        // cube's texels), on the texel's tangent plane.
+        vec3 ni = normalize(g.normal);
+        vec3 xi = sssPointOnTexel(xl, normalize(dir), g.position * MM_PER_M, ni, uTexelPlane);
         vec3 toLight = xl - xi;
         float d2 = dot(toLight, toLight) / (MM_PER_M * MM_PER_M);  // m²: E = I / d²
         // E = I/d² at x_i varies per sample, so it enters the sum (Eq. 9 with L_ℓ inside).
-        acc += sssRadiosityTerm(uBssrdfModel, xi, normalize(g.normal), normalize(toLight), xo, no, k, s.weight) /
-               max(d2, 1e-12);
+        acc += sssRadiosityTerm(uBssrdfModel, xi, ni, normalize(toLight), xo, no, k, s.weight) / max(d2, 1e-12);
       }
       sum += sssRadiosityFromSum(acc, uSssPointIntensity[l][c], uSamples);
     }
