@@ -1,0 +1,33 @@
+#pragma once
+// The bench's error metric (DESIGN "Measuring"; docs/commands.md, `tallow bench`): per object pixel
+// p, e_p = √(Δr² + Δg² + Δb²) with Δ = image − reference; RMSE = √(mean_p e_p²); relative RMSE =
+// RMSE / √(mean_p (r² + g² + b²) of the reference), the normalisation of the reference's own error
+// statistic (sss::kReferenceErrorStatistic), so the two compare directly; max = max_p e_p.
+#include <cstddef>
+
+#include "gpu/image.h"
+
+namespace tallow::gpu {
+
+/// Object pixels are those whose mask alpha is at least this (`tallow reference`'s standard-error
+/// image has alpha 1 where the camera ray hits a translucent object and 0 elsewhere).
+inline constexpr float kObjectMaskAlpha = 0.5f;
+
+struct ImageError {
+  double rmse = 0.0;
+  double relRmse = 0.0;  ///< RMSE / RMS of the reference (infinite for a black reference and RMSE > 0)
+  double maxError = 0.0;
+  std::size_t pixels = 0;  ///< object pixels compared
+};
+
+/// Pixels of `mask` with alpha ≥ kObjectMaskAlpha.
+std::size_t objectPixels(const Image& mask);
+
+/// The metric above over the object pixels of `mask`. Throws std::invalid_argument with one line
+/// when the three sizes differ or the mask has no object pixel.
+ImageError imageError(const Image& image, const Image& reference, const Image& mask);
+
+/// |Δ| per band, alpha e_p (both 0 outside the mask), for pictures. Same errors as imageError.
+Image differenceImage(const Image& image, const Image& reference, const Image& mask);
+
+}  // namespace tallow::gpu

@@ -1,0 +1,109 @@
+// The bench's error metric (gpu/image_error.h) on image pairs whose error is known in closed form.
+#include "gpu/image_error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace tallow {
+namespace {
+
+constexpr int kW = 7, kH = 5;
+
+gpu::Image constant(glm::vec3 rgb, int w = kW, int h = kH) {
+  gpu::Image img(w, h);
+  for (auto& p : img.pixels) p = glm::vec4(rgb, 1.0f);
+  return img;
+}
+
+/// Alpha 1 inside the rectangle [x0, x1) × [y0, y1), 0 elsewhere.
+gpu::Image rectMask(int x0, int y0, int x1, int y1) {
+  gpu::Image m(kW, kH);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) m.at(x, y).a = 1.0f;
+  return m;
+}
+
+bool inside(int x, int y) { return x >= 1 && x < 5 && y >= 1 && y < 4; }
+
+TEST(ImageError, ConstantOffsetInAllBands) {
+  // Δ = δ in r, g and b: e_p = √3 δ on every pixel, so RMSE and max are both √3 δ; against a
+  // constant reference c, the reference's RMS is √3 c and relative RMSE = δ / c.
+  const float c = 0.25f, delta = 0.125f;  // exact in binary: no rounding in Δ
+  const gpu::Image mask = rectMask(1, 1, 5, 4);
+  const gpu::Image ref = constant(glm::vec3(c));
+  const gpu::Image img = constant(glm::vec3(c + delta));
+  const gpu::ImageError e = gpu::imageError(img, ref, mask);
+  EXPECT_EQ(e.pixels, 12u);
+  EXPECT_NEAR(e.rmse, std::sqrt(3.0) * delta, 1e-12);
+  EXPECT_NEAR(e.maxError, std::sqrt(3.0) * delta, 1e-12);
+  EXPECT_NEAR(e.relRmse, std::sqrt(3.0) * delta / (std::sqrt(3.0) * c), 1e-12);
+}
+
+TEST(ImageError, SinglePixelDiffering) {
+  // One of n object pixels off by (3, 4, 0) × s: e = 5 s there and 0 elsewhere, so RMSE = e / √n.
+  const gpu::Image mask = rectMask(0, 0, kW, kH);
+  const double n = kW * kH;
+  const gpu::Image ref = constant(glm::vec3(0.5f));
+  gpu::Image img = ref;
+  const float s = 0.25f;
+  img.at(3, 2) += glm::vec4(3.0f * s, -4.0f * s, 0.0f, 0.0f);
+  const gpu::ImageError e = gpu::imageError(img, ref, mask);
+  const double err = 5.0 * s;
+  EXPECT_NEAR(e.rmse, err / std::sqrt(n), 1e-12);
+  EXPECT_NEAR(e.maxError, err, 1e-12);
+}
+
+TEST(ImageError, PixelsOutsideTheMaskNeverCount) {
+  const gpu::Image mask = rectMask(1, 1, 5, 4);
+  const gpu::Image ref = constant(glm::vec3(0.5f, 0.25f, 1.0f));
+  gpu::Image img = constant(glm::vec3(0.625f, 0.25f, 0.75f));
+  const gpu::ImageError before = gpu::imageError(img, ref, mask);
+  gpu::Image wildImg = img, wildRef = ref;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      if (!inside(x, y)) {
+        wildImg.at(x, y) = glm::vec4(1e6f, -3e5f, 42.0f, 0.0f);
+        wildRef.at(x, y) = glm::vec4(-7e4f, 9e5f, 0.0f, 1.0f);
+      }
+  const gpu::ImageError after = gpu::imageError(wildImg, wildRef, mask);
+  EXPECT_EQ(after.pixels, before.pixels);
+  EXPECT_DOUBLE_EQ(after.rmse, before.rmse);
+  EXPECT_DOUBLE_EQ(after.relRmse, before.relRmse);
+  EXPECT_DOUBLE_EQ(after.maxError, before.maxError);
+  // Δ = (0.125, 0, −0.25) everywhere inside: e² = 0.078125; the reference's |r|² = 1.3125.
+  EXPECT_NEAR(before.rmse, std::sqrt(0.078125), 1e-12);
+  EXPECT_NEAR(before.relRmse, std::sqrt(0.078125 / 1.3125), 1e-12);
+}
+
+TEST(ImageError, MaskThresholdIsHalfAlpha) {
+  gpu::Image mask(kW, kH);
+  mask.at(0, 0).a = 0.5f;    // counts
+  mask.at(1, 0).a = 0.499f;  // does not
+  EXPECT_EQ(gpu::objectPixels(mask), 1u);
+}
+
+TEST(ImageError, DifferenceImageIsAbsoluteDeltaInsideTheMaskOnly) {
+  const gpu::Image mask = rectMask(1, 1, 5, 4);
+  const gpu::Image ref = constant(glm::vec3(0.5f));
+  const gpu::Image img = constant(glm::vec3(0.25f, 0.5f, 1.25f));
+  const gpu::Image d = gpu::differenceImage(img, ref, mask);
+  EXPECT_FLOAT_EQ(d.at(2, 2).r, 0.25f);
+  EXPECT_FLOAT_EQ(d.at(2, 2).g, 0.0f);
+  EXPECT_FLOAT_EQ(d.at(2, 2).b, 0.75f);
+  EXPECT_NEAR(d.at(2, 2).a, std::sqrt(0.25 * 0.25 + 0.75 * 0.75), 1e-6);
+  EXPECT_EQ(d.at(0, 0), glm::vec4(0.0f));
+}
+
+TEST(ImageError, SizeMismatchAndEmptyMaskThrow) {
+  const gpu::Image mask = rectMask(1, 1, 5, 4);
+  const gpu::Image ref = constant(glm::vec3(0.5f));
+  EXPECT_THROW(gpu::imageError(constant(glm::vec3(0.5f), kW + 1, kH), ref, mask), std::invalid_argument);
+  EXPECT_THROW(gpu::imageError(ref, ref, gpu::Image(kW, kH + 1)), std::invalid_argument);
+  EXPECT_THROW(gpu::imageError(ref, ref, gpu::Image(kW, kH)), std::invalid_argument);  // all alpha 0
+  EXPECT_THROW(gpu::differenceImage(ref, constant(glm::vec3(0.5f), kW, kH + 2), mask), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tallow
