@@ -108,7 +108,13 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
 }
 
 std::string Renderer::mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
-  return RadiosityMaps::stateKey(scene, settings, fields_->animated() ? timeS : 0.0);
+  return RadiosityMaps::stateKey(scene, settings, fields_->animated() ? timeS : 0.0) + "|restart " +
+         std::to_string(accumulation_);
+}
+
+void Renderer::restartAccumulation() {
+  ++accumulation_;
+  noCacheFrame_ = 0;
 }
 
 void Renderer::ensureTargets(int width, int height) {

@@ -69,6 +69,10 @@ class Renderer {
   std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers, maps
   /// The radiosity maps, once a frame has used them (null before, or with another method).
   const RadiosityMaps* radiosityMaps() const { return maps_.get(); }
+  /// Forgets what the progressive methods have accumulated, keeping every allocation: the next
+  /// frame restarts the radiosity maps (as a change of their state key does) and the no-cache
+  /// seeds. For `tallow bench`, which times the frames after a warm-up frame.
+  void restartAccumulation();
 
  private:
   void ensureTargets(int width, int height);
@@ -83,6 +87,7 @@ class Renderer {
   const gpu::ShaderLibrary& shaders_;
   std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
   int noCacheFrame_ = 0;                 ///< seeds of the no-cache gather, one estimate per frame
+  int accumulation_ = 0;                 ///< restartAccumulation() calls: part of the maps' state key
   ShadowPass shadows_;
   SurfacePass surface_;
   DisplayPass display_;
