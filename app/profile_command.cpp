@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/capture_command.h"
+#include "app/gnuplot.h"
 #include "app/input_error.h"
 #include "app/setup.h"
 #include "gpu/atomic_file.h"
@@ -76,45 +77,34 @@ std::string number(double v) {
 }
 
 void writePlots(const std::filesystem::path& out, const std::string& title, bool haveStdErr) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+  if (!gnuplotAvailable()) {
     std::fprintf(stderr, "tallow: gnuplot is not installed; wrote the CSV files without plots\n");
     return;
   }
-  const auto script = out / ".profile.gp";
   const auto xTmp = out / ".profile_x.png.tmp";
   const auto mapTmp = out / ".profile_map.png.tmp";
-  {
-    std::FILE* f = std::fopen(script.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + script.string());
-    std::fprintf(f,
-                 "set datafile separator ','\n"
-                 "set terminal pngcairo size 900,600 font ',11'\n"
-                 "set output '%s'\n"
-                 "set title \"%s\" noenhanced\n"
-                 "set xlabel 'x [mm]'\nset ylabel 'R_d [mm^{-2}]'\nset logscale y\nset format y '10^{%%L}'\n"
-                 "set key top right\nset grid\n"
-                 "plot '%s' using 1:($4==0 ? $2 : 1/0) with lines lw 2 lc rgb '#1f77b4' title 'R_d'%s, \\\n"
-                 "     '' using 1:($4==1 ? -$2 : 1/0) with points pt 7 ps 0.6 lc rgb '#d62728' title '-R_d where negative'\n"
-                 "set output '%s'\n"
-                 "unset logscale y\nset format y '%%g'\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
-                 "set size ratio -1\nset view map\nset cblabel 'log_{10} R_d'\n"
-                 "set palette defined (0 '#000004', 1 '#3b0f70', 2 '#8c2981', 3 '#de4968', 4 '#fe9f6d', 5 '#fcfdbf')\n"
-                 "plot '%s' using 1:2:($3 > 0 ? log10($3) : 1/0) with image notitle, \\\n"
-                 "     '' using 1:($4 == 1 ? $2 : 1/0) with points pt 5 ps 0.3 lc rgb '#00ff00' title 'negative (raw S_d < 0)'\n",
-                 xTmp.c_str(), title.c_str(), (out / "profile_x.csv").c_str(),
-                 haveStdErr ? "" : "", mapTmp.c_str(), (out / "profile_map.csv").c_str());
-    std::fclose(f);
-  }
-  const std::string command = "gnuplot '" + script.string() + "' 2>/dev/null";
-  const int rc = std::system(command.c_str());
-  std::filesystem::remove(script);
-  if (rc != 0) {
-    std::filesystem::remove(xTmp);
-    std::filesystem::remove(mapTmp);
-    throw std::runtime_error("gnuplot failed to draw the profile plots");
-  }
-  std::filesystem::rename(xTmp, out / "profile_x.png");
-  std::filesystem::rename(mapTmp, out / "profile_map.png");
+  runGnuplot(
+      out / ".profile.gp",
+      [&](std::FILE* f) {
+        std::fprintf(f,
+                     "set datafile separator ','\n"
+                     "set terminal pngcairo size 900,600 font ',11'\n"
+                     "set output '%s'\n"
+                     "set title \"%s\" noenhanced\n"
+                     "set xlabel 'x [mm]'\nset ylabel 'R_d [mm^{-2}]'\nset logscale y\nset format y '10^{%%L}'\n"
+                     "set key top right\nset grid\n"
+                     "plot '%s' using 1:($4==0 ? $2 : 1/0) with lines lw 2 lc rgb '#1f77b4' title 'R_d'%s, \\\n"
+                     "     '' using 1:($4==1 ? -$2 : 1/0) with points pt 7 ps 0.6 lc rgb '#d62728' title '-R_d where negative'\n"
+                     "set output '%s'\n"
+                     "unset logscale y\nset format y '%%g'\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
+                     "set size ratio -1\nset view map\nset cblabel 'log_{10} R_d'\n"
+                     "set palette defined (0 '#000004', 1 '#3b0f70', 2 '#8c2981', 3 '#de4968', 4 '#fe9f6d', 5 '#fcfdbf')\n"
+                     "plot '%s' using 1:2:($3 > 0 ? log10($3) : 1/0) with image notitle, \\\n"
+                     "     '' using 1:($4 == 1 ? $2 : 1/0) with points pt 5 ps 0.3 lc rgb '#00ff00' title 'negative (raw S_d < 0)'\n",
+                     xTmp.c_str(), title.c_str(), (out / "profile_x.csv").c_str(), haveStdErr ? "" : "", mapTmp.c_str(),
+                     (out / "profile_map.csv").c_str());
+      },
+      {{xTmp, out / "profile_x.png"}, {mapTmp, out / "profile_map.png"}}, "the profile plots");
 }
 
 }  // namespace
