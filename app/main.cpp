@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/bench_command.h"
 #include "app/capture_command.h"
 #include "app/cost_command.h"
 #include "app/extraction_bench_command.h"
@@ -76,6 +77,22 @@ int main(int argc, char** argv) {
   referenceCmd->add_option("--points", reference.points, "surface points per translucent object and pass (0: automatic)");
   referenceCmd->add_option("--seed", reference.seed, "random seed");
   referenceCmd->add_option("--threads", reference.threads, "worker threads (0: all cores)");
+  referenceCmd->add_flag(tallow::app::emergentFlag(), reference.emergent, "light leaving the translucent objects onto the receivers; =N: emitter points per object and pass (docs/reference.md)");
+
+  tallow::app::BenchOptions bench;
+  auto* benchCmd = app.add_subcommand("bench", "speed against error: every method and swept setting timed and compared with the CPU reference");
+  addSceneOptions(*benchCmd, bench.scene);
+  benchCmd->add_option("--out", bench.outDir, "output folder")->required();
+  benchCmd->add_option("--time", bench.timeS, "animation time [s]");
+  benchCmd->add_option("--methods", bench.methods, "values of `method`, e.g. radiosity-maps,no-cache,albedo (default: all)")->delimiter(',');
+  benchCmd->add_option("--sweep", bench.sweeps, "key=v1,v2,...: one row per value (repeatable: the Cartesian product)");
+  benchCmd->add_option("--frames", bench.frames, "timed frames after the restart (at least 5; at least sss.frames + 2)");
+  benchCmd->add_option("--reference", bench.reference, "REF.exr from `tallow reference` (REF_stderr.exr beside it)");
+  benchCmd->add_option("--ref-rel-error", bench.refRelError, "compute the reference to this relative standard error");
+  benchCmd->add_option("--ref-spp", bench.refSpp, "compute the reference with this many passes");
+  benchCmd->add_option("--ref-points", bench.refPoints, "reference surface points per translucent object and pass (0: automatic)");
+  benchCmd->add_flag("--equal-time", bench.equalTime, "also run the reference for as long as each row's first frame");
+  benchCmd->add_option("--gl", bench.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
 
@@ -172,6 +189,7 @@ int main(int argc, char** argv) {
   try {
     if (*captureCmd) return tallow::app::runCapture(capture);
     if (*referenceCmd) return tallow::app::runReference(reference);
+    if (*benchCmd) return tallow::app::runBench(bench);
     if (*paramsCmd) return listParams();
     if (*probeBssrdfCmd) return tallow::app::runProbeBssrdf(probeBssrdf);
     if (*profileCmd) return tallow::app::runProbeProfile(profile);
