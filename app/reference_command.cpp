@@ -26,7 +26,19 @@ sss::ReferenceSettings referenceSettings(const ReferenceOptions& options) {
   s.pointsPerPass = options.points;
   s.seed = options.seed;
   s.threads = options.threads;
+  s.emergentLight = options.emergent > 0;
+  if (s.emergentLight) s.emitterPoints = options.emergent;
   return s;
+}
+
+/// `REF<suffix>.exr` beside `REF.exr`.
+std::filesystem::path besideOutput(const std::filesystem::path& out, const std::string& suffix) {
+  std::filesystem::path p = out;
+  std::string name = out.stem().string();
+  name += suffix;
+  name += out.extension().string();
+  p.replace_filename(name);
+  return p;
 }
 
 }  // namespace
@@ -40,13 +52,19 @@ void validateReferenceOptions(const ReferenceOptions& options) {
     throw InputError("reference: give --spp S (passes) or --rel-error E (relative standard error)");
   if (options.points < 0) throw InputError("--points: must be 0 (automatic) or more");
   if (options.threads < 0) throw InputError("--threads: must be at least 0");
+  if (options.emergent < 0) throw InputError("--emergent: emitter points per object and pass must be at least 1");
   if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
 }
 
-std::filesystem::path standardErrorPath(const std::filesystem::path& out) {
-  std::filesystem::path p = out;
-  p.replace_filename(out.stem().string() + "_stderr" + out.extension().string());
-  return p;
+std::filesystem::path standardErrorPath(const std::filesystem::path& out) { return besideOutput(out, "_stderr"); }
+
+std::filesystem::path emergentPath(const std::filesystem::path& out) { return besideOutput(out, "_emergent"); }
+
+std::string emergentFlag() {
+  std::string flag = "--emergent{";
+  flag += std::to_string(sss::kDefaultEmitterPoints);
+  flag += "}";
+  return flag;
 }
 
 sss::ReferenceResult computeReference(const ReferenceOptions& options) {
@@ -77,7 +95,7 @@ int runReference(const ReferenceOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
-  const std::map<std::string, std::string> attributes{
+  std::map<std::string, std::string> attributes{
       {"tallow.preset", loaded.presetName},
       {"tallow.renderer", "tallow reference (CPU, Embree + TBB)"},
       {"tallow.spp", std::to_string(r.passes)},
@@ -90,7 +108,14 @@ int runReference(const ReferenceOptions& options) {
       {"tallow.time_s", number(options.timeS)},
       {"tallow.model", std::string(sss::bssrdfModelName(loaded.config.render.sss.model))},
       {"tallow.triangles", std::to_string(r.triangles)},
-      {"tallow.seconds", number(r.seconds)}};
+      {"tallow.seconds", number(r.seconds)},
+      {"tallow.emergent", r.emitterPoints > 0 ? "on" : "off"}};
+  if (r.emitterPoints > 0) {
+    attributes["tallow.emitter_points"] = std::to_string(r.emitterPoints);
+    attributes["tallow.emergent_pixels"] = std::to_string(r.emergentPixels);
+    attributes["tallow.emergent_rel_error"] = number(r.emergentRelError);
+    attributes["tallow.emergent_rel_error_statistic"] = sss::kEmergentErrorStatistic;
+  }
   if (r.translucentPixels > 0 && r.nearFieldPoints < 1.0)
     std::fprintf(stderr,
                  "tallow: warning: only %.2g surface point(s) per pass fall within 1/sigma_t' of a pixel's surface point: "
@@ -99,9 +124,14 @@ int runReference(const ReferenceOptions& options) {
                  r.nearFieldPoints);
   gpu::writeExr(out, r.radiance, gpu::ExrPixelType::Float, attributes);
   gpu::writeExr(standardErrorPath(out), r.standardError, gpu::ExrPixelType::Float, attributes);
+  if (r.emitterPoints > 0) gpu::writeExr(emergentPath(out), r.emergent, gpu::ExrPixelType::Float, attributes);
   std::printf("tallow: reference of %s (%dx%d): %d pass(es) x %d points, relative standard error %s, %.1f s -> %s\n",
               loaded.presetName.c_str(), r.radiance.width, r.radiance.height, r.passes, r.pointsPerPass,
               number(r.relError).c_str(), r.seconds, options.out.c_str());
+  if (r.emitterPoints > 0)
+    std::printf("tallow: emergent light: %d emitter points per object and pass, %d receiver pixel(s) lit, relative "
+                "standard error %s -> %s\n",
+                r.emitterPoints, r.emergentPixels, number(r.emergentRelError).c_str(), emergentPath(out).string().c_str());
   return 0;
 }
 

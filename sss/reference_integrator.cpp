@@ -221,6 +221,28 @@ struct TranslucentObject {
   int points = 0;             ///< M of this object
 };
 
+/// A point uniform by area on a translucent object: a triangle by its area (binary search in the
+/// cumulative areas), then barycentrics (1 − √ξ₁, √ξ₁(1 − ξ₂), √ξ₁ ξ₂); n: the interpolated vertex
+/// normal. Random numbers: (stream, pass, object, 3i…3i+2). Empty where the normal vanishes.
+struct SurfaceSample {
+  glm::dvec3 x, n;  ///< metres, unit
+};
+std::optional<SurfaceSample> sampleSurface(const TranslucentObject& t, std::uint64_t seed, std::uint64_t stream,
+                                           std::uint64_t pass, std::size_t object, int i) {
+  const auto ui = static_cast<std::uint64_t>(i);
+  const double xiTri = unit(streamHash(seed, stream, pass, object, 3 * ui)) * t.cdf.back();
+  const double xi1 = unit(streamHash(seed, stream, pass, object, 3 * ui + 1));
+  const double xi2 = unit(streamHash(seed, stream, pass, object, 3 * ui + 2));
+  const auto k = static_cast<std::size_t>(std::upper_bound(t.cdf.begin(), t.cdf.end(), xiTri) - t.cdf.begin());
+  const auto& tri = t.mesh->triangles[std::min(k, t.cdf.size() - 1)];
+  const double su = std::sqrt(xi1);
+  const double b0 = 1.0 - su, b1 = su * (1.0 - xi2), b2 = su * xi2;
+  const glm::dvec3 x = b0 * t.mesh->positions[tri[0]] + b1 * t.mesh->positions[tri[1]] + b2 * t.mesh->positions[tri[2]];
+  const glm::dvec3 n = b0 * t.mesh->normals[tri[0]] + b1 * t.mesh->normals[tri[1]] + b2 * t.mesh->normals[tri[2]];
+  if (!(glm::length(n) > 0.0)) return std::nullopt;
+  return SurfaceSample{x, glm::normalize(n)};
+}
+
 /// One surface point of a pass and the lights that reach it.
 struct LitPoint {
   glm::dvec3 xMm, n;
@@ -274,13 +296,91 @@ std::vector<PointCell> sortIntoCells(std::vector<LitPoint>& points, double sigma
   return cells;
 }
 
+// Random stream ids (the first coordinate of streamHash after the seed); each use has its own.
+constexpr std::uint64_t kStreamLitPoints = 1;     ///< lit points' positions
+constexpr std::uint64_t kStreamPixelPoint = 2;    ///< a pixel's roulette per point
+constexpr std::uint64_t kStreamPixelCell = 3;     ///< a pixel's roulette per cell
+constexpr std::uint64_t kStreamEmitters = 4;      ///< emitter points' positions (emergent light)
+constexpr std::uint64_t kStreamEmitterPoint = 5;  ///< an emitter's roulette per point
+constexpr std::uint64_t kStreamEmitterCell = 6;   ///< an emitter's roulette per cell
+
+/// The random numbers of one gather: the stream ids of the roulette per cell and per point and the
+/// gathering point's own index (pixel, or object and emitter).
+struct GatherStreams {
+  std::uint64_t cell, point, index;
+};
+
+/// One pass's estimate of the scattered radiosity B(x_o) [W/m²] of Eq. 7 from the lit points of
+/// object t (sorted into `cells`): π (A/M) Σ_i [u_i < q_i]/q_i Σ_ℓ S_d(x_i, w_ℓ; x_o) e_{i,ℓ} with
+/// q_i = exp(−σ_tr r_i), the roulette played per cell first (docs/reference.md, The estimator).
+/// Camera pixels and emitter points (emergent light) both gather through this.
+glm::dvec3 gatherRadiosity(const TranslucentObject& t, const std::vector<LitPoint>& points,
+                           const std::vector<PointCell>& cells, const glm::dvec3& xoMm, const glm::dvec3& no,
+                           BssrdfModel model, std::uint64_t seed, std::uint64_t pass, const GatherStreams& streams) {
+  glm::dvec3 sum(0.0);
+  for (std::size_t ci = 0; ci < cells.size(); ++ci) {
+    const PointCell& cell = cells[ci];
+    const glm::dvec3 nearest = glm::clamp(xoMm, cell.lo, cell.hi);
+    const double cellSurvive = std::exp(-t.rouletteRate * glm::length(xoMm - nearest));
+    if (cellSurvive < 1.0 && unit(streamHash(seed, streams.cell, pass, streams.index, ci)) >= cellSurvive) continue;
+    for (std::size_t i = cell.begin; i < cell.end; ++i) {
+      const LitPoint& p = points[i];
+      const double r = glm::length(xoMm - p.xMm);
+      const double survive = std::exp(-t.rouletteRate * r);
+      const double conditional = survive / cellSurvive;
+      if (conditional < 1.0 && unit(streamHash(seed, streams.point, pass, streams.index, i)) >= conditional) continue;
+      for (const auto& [wl, e] : p.lights) {
+        for (int c = 0; c < 3; ++c) {
+          const auto cc = static_cast<std::size_t>(c);
+          if (!(e[c] > 0.0)) continue;
+          const BssrdfConfig cfg{p.xMm, p.n, wl, xoMm, no, t.sigmaA[cc], t.sigmaS[cc], t.g[cc], t.eta};
+          sum[c] += evaluateBssrdf<double>(model, cfg).sdClamped * e[c] / survive;
+        }
+      }
+    }
+  }
+  return kPi * t.areaMm2 / t.points * sum;
+}
+
+/// An emitter point of one pass (emergent light): where the light leaves the object, its B̂, and
+/// its share A/N of the object's area.
+struct Emitter {
+  glm::dvec3 x, n;          ///< metres, unit outward normal
+  glm::dvec3 radiosity;     ///< B̂(x) [W/m²]
+  double eta = 1.3;
+  double areaM2 = 0.0;      ///< A/N
+};
+
 /// What a camera ray through a pixel centre sees; the same in every pass.
 struct PixelHit {
   int slot = -1;               ///< translucent object, or −1 (then `base` is the whole radiance)
   glm::dvec3 xoMm{0.0}, no{0.0};
   double transmit = 0.0;       ///< F_t(cos θ_o)/π
   glm::dvec3 base{0.0};        ///< background, opaque shading or the specular reflection
+  bool receiver = false;       ///< an opaque surface (the emergent light's receivers)
+  glm::dvec3 xr{0.0}, nr{0.0}, albedo{0.0};  ///< receiver point [m], normal toward the camera, ρ
 };
+
+/// The emergent light one pass estimates at a receiver pixel, one bounce onto a Lambertian surface:
+/// ρ/π Σ_j (A/N) F_t(cos θ_o)/π B̂(x_j) cos θ_o cos θ_r / d² V(x_j, x_r) (docs/reference.md).
+glm::dvec3 emergentRadiance(const PixelHit& px, const std::vector<Emitter>& emitters, const RayScene& rays,
+                            double offset) {
+  glm::dvec3 sum(0.0);
+  const glm::dvec3 origin = px.xr + offset * px.nr;
+  for (const Emitter& e : emitters) {
+    const glm::dvec3 d = e.x - px.xr;
+    const double d2 = glm::dot(d, d);
+    if (!(d2 > 0.0)) continue;
+    const glm::dvec3 w = d / std::sqrt(d2);  // receiver toward emitter
+    const double cosR = glm::dot(px.nr, w), cosO = -glm::dot(e.n, w);
+    if (!(cosR > 0.0) || !(cosO > 0.0)) continue;
+    const glm::dvec3 toEmitter = e.x + offset * e.n - origin;
+    const double length = glm::length(toEmitter);
+    if (rays.occluded(origin, toEmitter / length, length - offset)) continue;
+    sum += fresnelTransmittance(cosO, e.eta) / kPi * e.radiosity * (cosO * cosR / d2 * e.areaM2);
+  }
+  return px.albedo / kPi * sum;
+}
 
 }  // namespace
 
@@ -294,6 +394,8 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     throw std::invalid_argument("reference: give --spp S (passes) or --rel-error E (relative standard error)");
   if (settings.pointsPerPass < 0) throw std::invalid_argument("--points: must be 0 (automatic) or more");
   if (settings.threads < 0) throw std::invalid_argument("--threads: must be at least 0");
+  if (settings.emergentLight && settings.emitterPoints < 1)
+    throw std::invalid_argument("--emergent: emitter points per object and pass must be at least 1");
   const auto start = std::chrono::steady_clock::now();
 
   std::unique_ptr<tbb::global_control> threadLimit;
@@ -399,6 +501,10 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
         const int slot = slotOfMesh[hit->geom];
         if (slot < 0) {
           px.base = shadeOpaque(o, xw, n);
+          px.receiver = true;
+          px.xr = xw;
+          px.nr = n;
+          px.albedo = glm::dvec3(o.albedo);
           continue;
         }
         const double cosO = std::clamp(glm::dot(n, toCamera), 0.0, 1.0);
@@ -430,6 +536,9 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
 
   std::vector<std::vector<LitPoint>> lit(objects.size());
   std::vector<std::vector<PointCell>> cellsOf(objects.size());
+  const bool emergent = settings.emergentLight && !objects.empty();
+  std::vector<Emitter> emitters;
+  std::vector<glm::dvec3> emergentMean(emergent ? count : 0, glm::dvec3(0.0));
   int passes = 0;
   double relError = std::numeric_limits<double>::infinity();
   while (passes < passCap) {
@@ -442,18 +551,9 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       std::vector<char> any(static_cast<std::size_t>(M), 0);
       tbb::parallel_for(tbb::blocked_range<int>(0, M, 256), [&](const tbb::blocked_range<int>& r) {
         for (int i = r.begin(); i != r.end(); ++i) {
-          const auto ui = static_cast<std::uint64_t>(i);
-          const double xiTri = unit(streamHash(settings.seed, 1, pass, s, 3 * ui)) * t.cdf.back();
-          const double xi1 = unit(streamHash(settings.seed, 1, pass, s, 3 * ui + 1));
-          const double xi2 = unit(streamHash(settings.seed, 1, pass, s, 3 * ui + 2));
-          const auto k = static_cast<std::size_t>(std::upper_bound(t.cdf.begin(), t.cdf.end(), xiTri) - t.cdf.begin());
-          const auto& tri = t.mesh->triangles[std::min(k, t.cdf.size() - 1)];
-          const double su = std::sqrt(xi1);
-          const double b0 = 1.0 - su, b1 = su * (1.0 - xi2), b2 = su * xi2;
-          const glm::dvec3 x = b0 * t.mesh->positions[tri[0]] + b1 * t.mesh->positions[tri[1]] + b2 * t.mesh->positions[tri[2]];
-          glm::dvec3 n = b0 * t.mesh->normals[tri[0]] + b1 * t.mesh->normals[tri[1]] + b2 * t.mesh->normals[tri[2]];
-          if (!(glm::length(n) > 0.0)) continue;
-          n = glm::normalize(n);
+          const std::optional<SurfaceSample> sample = sampleSurface(t, settings.seed, kStreamLitPoints, pass, s, i);
+          if (!sample) continue;
+          const glm::dvec3 &x = sample->x, &n = sample->n;
           LitPoint& p = points[static_cast<std::size_t>(i)];
           for (const Light& l : scene.lights) {
             const Incident in = incident(l, x);
@@ -477,6 +577,30 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       cellsOf[s] = sortIntoCells(lit[s], t.rouletteRate);
     }
 
+    // 1b. Emergent light: N emitter points per object, uniform by area, each with its B̂ gathered
+    //     from this pass's lit points exactly as a pixel's.
+    emitters.clear();
+    if (emergent)
+      for (std::size_t s = 0; s < objects.size(); ++s) {
+        const TranslucentObject& t = objects[s];
+        const int N = settings.emitterPoints;
+        std::vector<Emitter> made(static_cast<std::size_t>(N));
+        tbb::parallel_for(tbb::blocked_range<int>(0, N, 16), [&](const tbb::blocked_range<int>& r) {
+          for (int j = r.begin(); j != r.end(); ++j) {
+            Emitter& e = made[static_cast<std::size_t>(j)];
+            const std::optional<SurfaceSample> sample = sampleSurface(t, settings.seed, kStreamEmitters, pass, s, j);
+            if (!sample) continue;
+            const GatherStreams streams{kStreamEmitterCell, kStreamEmitterPoint,
+                                        (static_cast<std::uint64_t>(s) << 32) | static_cast<std::uint64_t>(j)};
+            e = {sample->x, sample->n,
+                 gatherRadiosity(t, lit[s], cellsOf[s], sample->x * kMmPerM, sample->n, model, settings.seed, pass, streams),
+                 t.eta, t.cdf.back() / N};
+          }
+        });
+        for (const Emitter& e : made)
+          if (e.radiosity != glm::dvec3(0.0)) emitters.push_back(e);
+      }
+
     // 2. Every translucent pixel gathers the object's lit points (Eq. 7 by area sampling), Russian
     //    roulette on exp(−σ_tr r), and the pass estimate joins the running mean and variance.
     const double n1 = static_cast<double>(passes + 1);
@@ -487,33 +611,14 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
           const PixelHit& px = pixels[index];
           glm::dvec3 value = px.base;
           if (px.slot >= 0) {
-            const TranslucentObject& t = objects[static_cast<std::size_t>(px.slot)];
-            const std::vector<LitPoint>& points = lit[static_cast<std::size_t>(px.slot)];
-            glm::dvec3 sum(0.0);
-            const std::vector<PointCell>& cells = cellsOf[static_cast<std::size_t>(px.slot)];
-            for (std::size_t ci = 0; ci < cells.size(); ++ci) {
-             const PointCell& cell = cells[ci];
-             const glm::dvec3 nearest = glm::clamp(px.xoMm, cell.lo, cell.hi);
-             const double cellSurvive = std::exp(-t.rouletteRate * glm::length(px.xoMm - nearest));
-             if (cellSurvive < 1.0 && unit(streamHash(settings.seed, 3, pass, index, ci)) >= cellSurvive) continue;
-             for (std::size_t i = cell.begin; i < cell.end; ++i) {
-              const LitPoint& p = points[i];
-              const double r = glm::length(px.xoMm - p.xMm);
-              const double survive = std::exp(-t.rouletteRate * r);
-              const double conditional = survive / cellSurvive;
-              if (conditional < 1.0 && unit(streamHash(settings.seed, 2, pass, index, i)) >= conditional) continue;
-              for (const auto& [wl, e] : p.lights) {
-                for (int c = 0; c < 3; ++c) {
-                  const auto cc = static_cast<std::size_t>(c);
-                  if (!(e[c] > 0.0)) continue;
-                  const BssrdfConfig cfg{p.xMm, p.n, wl, px.xoMm, px.no, t.sigmaA[cc], t.sigmaS[cc], t.g[cc], t.eta};
-                  sum[c] += evaluateBssrdf<double>(model, cfg).sdClamped * e[c] / survive;
-                }
-              }
-             }
-            }
-            const glm::dvec3 B = kPi * t.areaMm2 / t.points * sum;
-            value += px.transmit * B;
+            const auto slot = static_cast<std::size_t>(px.slot);
+            const GatherStreams streams{kStreamPixelCell, kStreamPixelPoint, index};
+            value += px.transmit * gatherRadiosity(objects[slot], lit[slot], cellsOf[slot], px.xoMm, px.no, model,
+                                                   settings.seed, pass, streams);
+          } else if (px.receiver && emergent) {
+            const glm::dvec3 e = emergentRadiance(px, emitters, rays, offset);
+            value += e;
+            emergentMean[index] += (e - emergentMean[index]) / n1;
           }
           const glm::dvec3 delta = value - mean[index];
           mean[index] += delta / n1;
@@ -548,6 +653,24 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       const glm::dvec3 se = passes >= 2 ? glm::sqrt(m2[i] / ((passes - 1.0) * passes)) : glm::dvec3(0.0);
       result.standardError.at(x, y) = glm::vec4(glm::vec3(se), pixels[i].slot >= 0 ? 1.0f : 0.0f);
     }
+  if (settings.emergentLight) {
+    result.emitterPoints = settings.emitterPoints;
+    result.emergent = gpu::Image(W, H);
+    double se2 = 0.0, e2 = 0.0;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
+        const glm::dvec3 e = emergent ? emergentMean[i] : glm::dvec3(0.0);
+        result.emergent.at(x, y) = glm::vec4(glm::vec3(e), pixels[i].receiver ? 1.0f : 0.0f);
+        if (!(std::max({e.x, e.y, e.z}) > 0.0)) continue;
+        ++result.emergentPixels;
+        if (passes >= 2) se2 += (m2[i].x + m2[i].y + m2[i].z) / ((passes - 1.0) * passes);
+        e2 += glm::dot(e, e);
+      }
+    result.emergentRelError = result.emergentPixels == 0 ? 0.0
+                              : passes < 2                ? std::numeric_limits<double>::infinity()
+                                                          : std::sqrt(se2 / e2);
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -5,7 +5,9 @@
 // rays, summed with the shared S_d (sss/bssrdf.h) into the scattered radiosity B of the
 // radiosity-maps paper's Eq. 7 — and Lambertian opaque surfaces with hard shadows. Rays: Embree 3;
 // threads: TBB. Progressive: passes of fresh points, a per-pixel mean and variance over passes, and
-// a stop on a pass count or a relative standard error. Formulas and limitations: docs/reference.md.
+// a stop on a pass count or a relative standard error. Optionally (emergentLight) the light leaving
+// the translucent objects lands on the opaque receivers, one bounce (the ground truth for the
+// VPLs of the radiosity-maps paper's §3.4). Formulas and limitations: docs/reference.md.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -15,6 +17,10 @@
 #include "sss/scene.h"
 
 namespace tallow::sss {
+
+/// The default of ReferenceSettings::emitterPoints: each pass costs receiver pixels × emitter
+/// points shadow rays, so the count is bounded rather than scaled with the area.
+inline constexpr int kDefaultEmitterPoints = 1024;
 
 struct ReferenceSettings {
   double timeS = 0.0;           ///< animation time: field objects meshed and flame lights placed at t
@@ -27,6 +33,10 @@ struct ReferenceSettings {
   int threads = 0;              ///< 0: TBB's default
   int minPasses = 8;            ///< with relError: passes before the error estimate is trusted (≥ 2)
   int passLimit = 1 << 16;      ///< with relError only: give up after this many passes
+  /// Light leaving the translucent objects onto the opaque receivers (one bounce, Lambertian
+  /// receivers). Only when the GPU renders it too (VPLs), so that like is compared with like.
+  bool emergentLight = false;
+  int emitterPoints = kDefaultEmitterPoints;  ///< with emergentLight: emitter points per translucent object and pass (≥ 1)
 };
 
 /// The statistic the stopping rule and the metadata use, over the pixels whose camera ray hits a
@@ -34,6 +44,9 @@ struct ReferenceSettings {
 /// per-pixel standard errors of the mean (se² = sample variance of the pass estimates / passes).
 /// It predicts the relative RMSE of the reference itself in the bench's colour-band metric.
 inline constexpr const char* kReferenceErrorStatistic = "relative RMS standard error over translucent pixels";
+/// ReferenceResult::emergentRelError, reported (not a stopping rule).
+inline constexpr const char* kEmergentErrorStatistic =
+    "relative RMS standard error of the emergent term over receiver pixels with emergent light";
 
 /// The estimator's distribution is skewed by the near-field peak of S_d (r ≲ 1/σ_t'): with fewer
 /// than about one point per pass within 1/σ_t' of x_o, passes usually miss the peak and both the
@@ -53,6 +66,14 @@ struct ReferenceResult {
   double nearFieldPoints = 0.0;  ///< the smallest over translucent objects (0 without any)
   double relError = 0.0;     ///< ε above after the last pass (infinity after one pass with translucent pixels)
   int translucentPixels = 0;
+  /// The emergent term alone (emergentLight), mean over passes, linear RGB; alpha 1 on the
+  /// receiver pixels (camera ray hits an opaque surface), 0 elsewhere. Empty (0×0) when off.
+  gpu::Image emergent;
+  int emitterPoints = 0;      ///< emitter points per object and pass (0: emergent light off)
+  int emergentPixels = 0;     ///< receiver pixels with emergent light (mean > 0 in some band)
+  /// ε of kReferenceErrorStatistic over the emergentPixels with the emergent term's mean as the
+  /// scale: √(mean_p Σ_c se_{p,c}²) / √(mean_p Σ_c Ē_{p,c}²) (0 without such pixels).
+  double emergentRelError = 0.0;
   std::size_t triangles = 0;  ///< in the Embree scene
   double seconds = 0.0;       ///< wall time of the integration (set-up included)
 };
@@ -63,7 +84,7 @@ using ReferenceProgress = std::function<bool(int passes, double relError)>;
 /// Renders `scene` (lights as loaded: environment lights included, flame lights moved to timeS)
 /// with `render`'s size, camera aspect, sss.model, method, specular, shadows, ambient and background.
 /// Throws std::invalid_argument (one line) on bad settings: neither stop given, maxPasses < 0,
-/// relError < 0 or not finite, pointsPerPass < 0, size < 1; std::runtime_error when a mesh or the
+/// relError < 0 or not finite, pointsPerPass < 0, emitterPoints < 1 with emergentLight, size < 1; std::runtime_error when a mesh or the
 /// environment map cannot be read.
 ReferenceResult renderReference(const Scene& scene, const RenderSettings& render, const ReferenceSettings& settings,
                                 const ReferenceProgress& progress = {});
