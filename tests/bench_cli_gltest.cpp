@@ -1,0 +1,197 @@
+// `tallow bench` through the real executable on the slab at a tiny size: the table's shape, an
+// error recomputed here from the written last frame, a method ordering with an independent reason,
+// and one line + non-zero exit + nothing written for each kind of bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gpu/image_io.h"
+#include "support/run_tallow.h"
+#include "support/temp_dir.h"
+
+namespace tallow {
+namespace {
+
+using test::runTallow;
+
+constexpr const char* kSize = "8x6";
+/// Small maps and few accumulated frames keep each row to a few llvmpipe frames.
+const std::vector<std::string> kSmall = {"--preset", "slab", "--size", kSize, "--set", "sss.map_size=64",
+                                         "--set", "sss.light_map_size=64", "--set", "sss.frames=3"};
+
+std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  std::string c;
+  while (std::getline(s, c, ',')) cells.push_back(c);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+/// bench.csv as one map (column → cell) per row.
+std::vector<std::map<std::string, std::string>> readCsv(const std::filesystem::path& file, std::vector<std::string>& header) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  header = split(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < cells.size() && i < header.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// A reference of the slab at kSize, shared by the tests of this file (the integrator's 4 passes).
+class BenchCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir();
+    const auto r =
+        runTallow({"reference", "--preset", "slab", "--size", kSize, "--spp", "4", "--out", ref().string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static std::filesystem::path ref() { return dir_->path() / "ref.exr"; }
+  static test::TempDir* dir_;
+};
+test::TempDir* BenchCli::dir_ = nullptr;
+
+TEST_F(BenchCli, TableHasOneRowPerMethodAndSettingWithFiniteErrors) {
+  test::TempDir dir;
+  const auto out = dir.path() / "bench";
+  const auto r = runTallow(concat({"bench"}, concat(kSmall, {"--reference", ref().string(), "--methods",
+                                                             "radiosity-maps,albedo", "--sweep", "sss.maps=4,8",
+                                                             "--frames", "5", "--out", out.string()})));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::vector<std::string> header;
+  const auto rows = readCsv(out / "bench.csv", header);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const char* column : {"row", "method", "sss.maps", "frames", "first_wall_ms", "first_rel_rmse", "median_wall_ms",
+                             "median_accumulating_wall_ms", "median_converged_wall_ms", "gpu_ms_surface", "last_rmse",
+                             "last_rel_rmse", "last_max_error", "object_pixels", "gpu_bytes", "maps_bytes", "triangles"})
+    EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
+  std::map<std::string, double> relByMethod;  // the larger over the two K
+  int seen[2][2] = {{0, 0}, {0, 0}};
+  for (const auto& row : rows) {
+    const std::string& method = row.at("method");
+    const int k = std::stoi(row.at("sss.maps"));
+    seen[method == "albedo" ? 1 : 0][k == 8 ? 1 : 0]++;
+    // sss.frames = 3: a progressive method accumulates 3 frames, then needs 2 converged ones.
+    EXPECT_GE(std::stoi(row.at("frames")), 5);
+    for (const char* column : {"first_wall_ms", "first_rmse", "last_rmse", "last_rel_rmse", "last_max_error"}) {
+      const double v = std::stod(row.at(column));
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << column << " = " << row.at(column);
+    }
+    if (method == "radiosity-maps") {
+      EXPECT_GE(std::stoi(row.at("converged_frames")), 2);
+      EXPECT_FALSE(row.at("maps_bytes").empty());
+    }
+    relByMethod[method] = std::max(relByMethod[method], std::stod(row.at("last_rel_rmse")));
+
+    // The bench's RMSE recomputed from the float EXR of the last frame, with the metric's own
+    // definition written out here: object pixels are those of the reference's standard-error alpha.
+    const gpu::Image last = gpu::readExr(out / (row.at("row") + "_last.exr"));
+    const gpu::Image reference = gpu::readExr(ref());
+    const gpu::Image stderrImage = gpu::readExr(dir_->path() / "ref_stderr.exr");
+    ASSERT_EQ(last.pixels.size(), reference.pixels.size());
+    double sum = 0.0, sumRef = 0.0;
+    int n = 0;
+    for (std::size_t i = 0; i < last.pixels.size(); ++i) {
+      if (stderrImage.pixels[i].a < 0.5f) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(last.pixels[i][c]) - double(reference.pixels[i][c]);
+        sum += d * d;
+        sumRef += double(reference.pixels[i][c]) * reference.pixels[i][c];
+      }
+      ++n;
+    }
+    ASSERT_GT(n, 0);
+    EXPECT_EQ(std::stoi(row.at("object_pixels")), n);
+    const double rmse = std::sqrt(sum / n);
+    EXPECT_NEAR(std::stod(row.at("last_rmse")), rmse, 1e-5 * rmse);
+    EXPECT_NEAR(std::stod(row.at("last_rel_rmse")), rmse / std::sqrt(sumRef / n), 1e-5 * rmse / std::sqrt(sumRef / n));
+  }
+  for (auto& m : seen)
+    for (int count : m) EXPECT_EQ(count, 1);
+  // Albedo shades the slab as a Lambertian surface, without the light that scatters beneath it;
+  // the reference has that light, so albedo must be further from it than the radiosity maps.
+  EXPECT_GT(relByMethod["albedo"], relByMethod["radiosity-maps"]);
+
+  // convergence.csv: one line per timed frame of every row.
+  std::vector<std::string> convergenceHeader;
+  const auto frames = readCsv(out / "convergence.csv", convergenceHeader);
+  std::size_t expected = 0;
+  for (const auto& row : rows) expected += std::stoul(row.at("frames"));
+  EXPECT_EQ(frames.size(), expected);
+  for (const char* file : {"bench.json", "radiosity-maps_sss.maps-4_first.png", "radiosity-maps_sss.maps-4_last.png",
+                           "radiosity-maps_sss.maps-4_diff.png", "albedo_sss.maps-8_equal_time.png"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / file)) << file;
+}
+
+TEST_F(BenchCli, BadInputGivesOneLineAndWritesNothing) {
+  test::TempDir dir;
+  const auto out = dir.path() / "bench";
+  const std::string refArg = ref().string();
+  // A reference whose standard-error image is cut short.
+  std::filesystem::copy_file(ref(), dir.path() / "broken.exr");
+  {
+    std::ifstream in(dir_->path() / "ref_stderr.exr", std::ios::binary);
+    std::string bytes(300, '\0');
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    dir.write("broken_stderr.exr", bytes);
+  }
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--reference", refArg, "--methods", "radiosity-mapz"}, "method"},
+      {{"--reference", refArg, "--frames", "4"}, "--frames"},
+      {{"--reference", refArg, "--sweep", "sss.maps"}, "--sweep"},
+      {{"--reference", refArg, "--sweep", "sss.maps="}, "--sweep"},
+      {{"--reference", refArg, "--sweep", "sss.mpas=4,8"}, "sss.mpas"},
+      {{"--reference", refArg, "--sweep", "sss.maps=4,0"}, "sss.maps"},
+      {{"--reference", refArg, "--sweep", "material=Marble,Skimmilk"}, "material"},
+      {{"--reference", (dir.path() / "missing.exr").string()}, "missing.exr"},
+      {{"--reference", refArg, "--size", "10x6"}, "10x6"},
+      {{"--reference", (dir.path() / "broken.exr").string()}, "broken_stderr.exr"},
+      {{}, "--reference"},
+      {{"--ref-spp", "0"}, "--ref-spp"},
+  };
+  for (const auto& [extra, expected] : cases) {
+    std::vector<std::string> args = {"bench", "--preset", "slab", "--out", out.string()};
+    if (std::find(extra.begin(), extra.end(), "--size") == extra.end()) args.insert(args.end(), {"--size", kSize});
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = runTallow(args);
+    std::string joined;
+    for (const auto& a : extra) joined += a + " ";
+    EXPECT_NE(r.exitCode, 0) << joined;
+    EXPECT_EQ(test::lineCount(r.err), 1) << joined << "\n" << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << joined << "\n" << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << joined;
+  }
+  // An --out whose parent is a file.
+  const auto file = dir.write("file", "x");
+  const auto r = runTallow({"bench", "--preset", "slab", "--size", kSize, "--reference", refArg, "--out",
+                            (file / "bench").string()});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("is not a folder"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace tallow
