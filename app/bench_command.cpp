@@ -265,7 +265,8 @@ json errorJson(const gpu::ImageError& e) {
   return {{"rmse", e.rmse}, {"rel_rmse", e.relRmse}, {"max", e.maxError}};
 }
 
-void writePlots(const std::filesystem::path& out, const std::string& title, bool hasRows) {
+void writePlots(const std::filesystem::path& outDir, const std::string& title, bool hasRows) {
+  const std::filesystem::path out = std::filesystem::absolute(outDir);  // the kept script runs from anywhere
   if (!hasRows) return;
   if (!gnuplotAvailable()) {
     std::fprintf(stderr, "tallow: gnuplot is not installed; wrote the CSV files without plots\n");
@@ -276,28 +277,34 @@ void writePlots(const std::filesystem::path& out, const std::string& title, bool
   runGnuplot(
       out / "bench.gp",
       [&](std::FILE* f) {
-        // bench.csv: column 1 the row's name; the others are looked up by header name.
+        // bench.csv: column 1 the row's name; the others are looked up by header name. The bench
+        // draws into temporary files; the script is kept, to redraw by hand (see its first line).
         std::fprintf(f,
+                     "# redraw: gnuplot -e \"speed_png='speed_error.png'; convergence_png='convergence.png'\" "
+                     "bench.gp\n"
+                     "if (!exists(\"speed_png\")) speed_png = '%s'\n"
+                     "if (!exists(\"convergence_png\")) convergence_png = '%s'\n"
                      "set datafile separator ','\n"
                      "set terminal pngcairo size 900,600 font ',11'\n"
                      "set key autotitle columnhead\n"
-                     "set output '%s'\n"
+                     "set output speed_png\n"
                      "set title \"%s: speed against error\" noenhanced\n"
                      "set logscale x\nset xlabel 'median wall time per frame [ms]'\n"
                      "set ylabel 'relative RMSE of the last frame'\nset grid\nunset key\n"
                      "plot '%s' using 'median_wall_ms':'last_rel_rmse' with points pt 7 ps 1.2, \\\n"
                      "     '' using 'median_wall_ms':'last_rel_rmse':1 with labels offset 0,1 font ',8' noenhanced\n"
-                     "set output '%s'\n"
+                     "set output convergence_png\n"
                      "set title \"%s: convergence after a restart\" noenhanced\n"
                      "unset logscale x\nset xlabel 'frames since the restart'\nset ylabel 'relative RMSE'\n"
                      "set key outside right noenhanced\n"
                      "rows = system(\"tail -n +2 '%s' | cut -d, -f1 | uniq\")\n"
                      "plot for [r in rows] '%s' using ((strcol(1) eq r) ? column('frame') + 1 : 1/0):'rel_rmse' "
                      "with linespoints title r\n",
-                     speedTmp.c_str(), title.c_str(), (out / "bench.csv").c_str(), convTmp.c_str(), title.c_str(),
+                     speedTmp.c_str(), convTmp.c_str(), title.c_str(), (out / "bench.csv").c_str(), title.c_str(),
                      (out / "convergence.csv").c_str(), (out / "convergence.csv").c_str());
       },
-      {{speedTmp, out / "speed_error.png"}, {convTmp, out / "convergence.png"}}, "the bench plots");
+      {{speedTmp, out / "speed_error.png"}, {convTmp, out / "convergence.png"}}, "the bench plots",
+      /*keepScript=*/true);
 }
 
 }  // namespace

@@ -8,7 +8,7 @@ namespace tallow::app {
 bool gnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 void runGnuplot(const std::filesystem::path& script, const std::function<void(std::FILE*)>& writeScript,
-                const std::vector<PlotOutput>& outputs, const std::string& what) {
+                const std::vector<PlotOutput>& outputs, const std::string& what, bool keepScript) {
   {
     std::FILE* f = std::fopen(script.c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + script.string());
@@ -19,7 +19,7 @@ void runGnuplot(const std::filesystem::path& script, const std::function<void(st
   command += script.string();
   command += "' 2>/dev/null";
   const int rc = std::system(command.c_str());
-  std::filesystem::remove(script);
+  if (!keepScript) std::filesystem::remove(script);
   if (rc != 0) {
     for (const PlotOutput& o : outputs) std::filesystem::remove(o.temporary);
     throw std::runtime_error("gnuplot failed to draw " + what);

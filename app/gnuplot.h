@@ -19,10 +19,11 @@ struct PlotOutput {
   std::filesystem::path temporary, final;
 };
 
-/// Writes the script with `writeScript` to `script`, runs gnuplot on it, removes the script, and
-/// renames every output. Throws std::runtime_error("gnuplot failed to draw " + what) when gnuplot
-/// fails (the temporary outputs removed).
+/// Writes the script with `writeScript` to `script`, runs gnuplot on it, removes the script unless
+/// `keepScript` (to redraw the plots by hand), and renames every output. Throws
+/// std::runtime_error("gnuplot failed to draw " + what) when gnuplot fails (the temporary outputs
+/// removed).
 void runGnuplot(const std::filesystem::path& script, const std::function<void(std::FILE*)>& writeScript,
-                const std::vector<PlotOutput>& outputs, const std::string& what);
+                const std::vector<PlotOutput>& outputs, const std::string& what, bool keepScript = false);
 
 }  // namespace tallow::app
