@@ -1,11 +1,14 @@
 // The CPU reference integrator (sss/reference_integrator.h, `tallow reference`): the analytic slab
 // within its own error bound, an honest error estimate (two seeds differ by about √2 × the
-// estimated standard error), and one-line refusals of bad options. No GL.
+// estimated standard error), one-line refusals of bad options, and the emergent light onto the
+// receivers (--emergent) against a numerical integral, with visibility, and off by default. No GL.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <vector>
 
 #include "app/input_error.h"
@@ -266,6 +269,179 @@ TEST(ReferenceIntegrator, CommandWritesImageAndStandardError) {
   EXPECT_EQ(image.height, 4);
   EXPECT_EQ(se.width, 6);
   EXPECT_NE(r.out.find("3 pass(es)"), std::string::npos) << r.out;
+}
+
+// --- Emergent light (ReferenceSettings::emergentLight, `--emergent`) -----------------------------
+
+// tests/data/emergent_sphere.json: a marble sphere over a grey ground (ρ = 0.5, ambient 0.1) lit
+// straight down by 1 W/m²; 12×4 pixels of 1 cm, column i at x = (i − 5.5) cm, rows at z = ∓1.5, ∓0.5
+// cm; the four pixels at x, z = ±0.5 cm see the sphere, the others the ground (none in its shadow).
+app::LoadedScene emergentSphere() {
+  app::SceneOptions options;
+  options.preset = std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/emergent_sphere.json";
+  return app::loadScene(options);
+}
+
+sss::ReferenceResult integrateEmergent(const app::LoadedScene& scene, int passes, int points, int emitters,
+                                       std::uint64_t seed) {
+  sss::ReferenceSettings s;
+  s.maxPasses = passes;
+  s.pointsPerPass = points;
+  s.seed = seed;
+  s.emergentLight = emitters > 0;
+  if (emitters > 0) s.emitterPoints = emitters;
+  return sss::renderReference(scene.config.scene, scene.config.render, s);
+}
+
+// A small receiver (2 mm square, ρ = 0.5) 1 cm above the slab's centre, facing it, seen from below by
+// a narrow perspective camera in the gap. The slab is lit at 60° so that the receiver's shadow falls
+// 1.7 cm away; far from the edges its radiosity is uniform, B = F_t(60°) E cos 60° R_d,total (the
+// standard dipole, as in ObliquelyLitSlabFollowsLambertsCosine), so the receiver's radiance is
+// L = ρ/π · B/π · ∫_top F_t(cos θ) cos² θ / d² dA, cos θ = h/d, over the slab's 20 cm square top (the
+// other faces face away), integrated here by the midpoint rule on a 0.05 mm grid. Allowance 1% for
+// what the integral leaves out: the lower B within ~1 cm of the slab's edges (≈ 0.3% of the kernel's
+// weight lies there) and the receiver's own shadow (≈ side²/(16π h²) ≈ 0.1%).
+TEST(ReferenceIntegrator, EmergentLightOnAReceiverAboveTheSlab) {
+  app::LoadedScene scene = slab("3x3");
+  const double theta = 60.0 * kPi / 180.0, h = 0.01, top = 0.05, side = 0.002, rho = 0.5, half = 0.1;
+  scene.config.scene.lights.at(0).direction = glm::vec3(std::sin(theta), std::cos(theta), 0.0);
+  sss::SceneObject receiver;
+  receiver.name = "receiver";
+  receiver.shape = sss::ShapeKind::Plane;
+  receiver.size = glm::vec3(side, 1.0, side);
+  receiver.transform.position = glm::vec3(0.0, top + h, 0.0);
+  receiver.transform.rotationDeg = glm::vec3(180.0f, 0.0f, 0.0f);  // facing down
+  receiver.albedo = glm::vec3(static_cast<float>(rho));
+  scene.config.scene.objects.push_back(receiver);
+  sss::Camera& camera = scene.config.scene.camera;
+  camera.orthographic = false;
+  camera.position = glm::vec3(0.0, top + 0.5 * h, 0.0);
+  camera.target = glm::vec3(0.0, top + h, 0.0);
+  camera.up = glm::vec3(0.0, 0.0, -1.0);
+  camera.fovYDeg = 10.0f;  // the view 0.9 mm across at the receiver: every pixel sees it
+  const sss::ReferenceResult r = integrateEmergent(scene, 16, 1 << 16, 8192, 7);
+  EXPECT_EQ(r.translucentPixels, 0);
+  EXPECT_EQ(r.emergentPixels, 9);
+  ASSERT_EQ(r.emergent.width, 3);
+
+  const sss::Material& m = scene.config.scene.objects.at(0).material;
+  double kernel = 0.0;  // ∫ F_t(cos θ) cos² θ / d² dA over the top (dimensionless; π for an infinite plane and F_t = 1)
+  const int steps = 2000;
+  const double dx = half / steps;
+  for (int i = 0; i < steps; ++i)
+    for (int k = 0; k < steps; ++k) {
+      const double x = (i + 0.5) * dx, z = (k + 0.5) * dx, d2 = x * x + z * z + h * h, cosT = h / std::sqrt(d2);
+      kernel += 4.0 * sss::fresnelTransmittance(cosT, m.eta) * cosT * cosT / d2 * dx * dx;
+    }
+  const double E = scene.config.scene.lights.at(0).intensity.x;
+  const glm::vec4 centre = r.radiance.at(1, 1), se = r.standardError.at(1, 1);
+  for (int c = 0; c < 3; ++c) {
+    const double B = sss::fresnelTransmittance(std::cos(theta), m.eta) * E * std::cos(theta) *
+                     test::jensenTotalRd(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta);
+    const double expected = rho / kPi * B / kPi * kernel;
+    std::printf("band %d emergent: reference %.6g +- %.3g (%.2f%%), numerical %.6g (kernel %.5f), deviation %.2f sigma\n",
+                c, centre[c], se[c], 100.0 * se[c] / expected, expected, kernel, (centre[c] - expected) / se[c]);
+    EXPECT_FLOAT_EQ(r.emergent.at(1, 1)[c], centre[c]) << "no direct light or ambient on the downward face";
+    EXPECT_GT(se[c], 0.0f);
+    EXPECT_LT(se[c], 0.05 * expected) << "the bound must be tight enough to mean something";
+    EXPECT_NEAR(centre[c], expected, 3.0 * se[c] + 0.01 * expected) << "band " << c;
+  }
+  EXPECT_GT(r.emergentRelError, 0.0);
+  EXPECT_LT(r.emergentRelError, 0.05);
+}
+
+// Visibility: a wall 4 cm high at x = 2.0…2.2 cm, beyond the sphere (radius 1 cm) and not between it
+// and the light, hides the sphere from the ground behind it: there the emergent term is exactly 0.
+// Every segment from the sphere to the ground at x ≤ 1.5 cm stays at x ≤ 1.5 cm, so the wall shadows
+// none of it and changes none of the lit points: those pixels keep their value.
+TEST(ReferenceIntegrator, EmergentLightIsBlockedByAnOccluder) {
+  app::LoadedScene scene = emergentSphere();
+  const sss::ReferenceResult open = integrateEmergent(scene, 4, 4096, 2048, 3);
+  sss::SceneObject wall;
+  wall.name = "wall";
+  wall.shape = sss::ShapeKind::Box;
+  wall.size = glm::vec3(0.002, 0.04, 0.2);
+  wall.transform.position = glm::vec3(0.021, 0.02, 0.0);
+  scene.config.scene.objects.push_back(wall);
+  const sss::ReferenceResult walled = integrateEmergent(scene, 4, 4096, 2048, 3);
+  ASSERT_EQ(open.translucentPixels, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 12; ++x) {
+      if (open.standardError.at(x, y).a > 0.0f) continue;  // the sphere
+      for (int c = 0; c < 3; ++c) {
+        const double before = open.emergent.at(x, y)[c], after = walled.emergent.at(x, y)[c];
+        const double se = open.standardError.at(x, y)[c];
+        if (x >= 8) {  // behind the wall
+          EXPECT_GT(before, 5.0 * se) << "pixel " << x << "," << y << ": emergent light to block";
+          EXPECT_EQ(after, 0.0) << "pixel " << x << "," << y;
+        } else {
+          EXPECT_NEAR(after, before, 3.0 * std::hypot(se, walled.standardError.at(x, y)[c]) + 1e-12)
+              << "pixel " << x << "," << y;
+        }
+      }
+    }
+  std::printf("column 8 (behind the wall): %.4g +- %.3g without it, %.4g with it; column 3: %.4g and %.4g\n",
+              open.emergent.at(8, 1).x, open.standardError.at(8, 1).x, walled.emergent.at(8, 1).x,
+              open.emergent.at(3, 1).x, walled.emergent.at(3, 1).x);
+}
+
+// Off by default: the receivers get direct light and ambient only (ρ/π E + ρ ambient, none in the
+// sphere's shadow), no emergent image; turning it on leaves the sphere's pixels bit for bit (its
+// random streams are its own) and adds the emergent term to the receivers.
+TEST(ReferenceIntegrator, EmergentLightIsOffByDefault) {
+  const app::LoadedScene scene = emergentSphere();
+  EXPECT_FALSE(sss::ReferenceSettings{}.emergentLight);
+  const sss::ReferenceResult off = integrateEmergent(scene, 2, 4096, 0, 5);
+  const sss::ReferenceResult on = integrateEmergent(scene, 2, 4096, 256, 5);
+  EXPECT_EQ(off.emergent.width, 0);
+  EXPECT_EQ(off.emitterPoints, 0);
+  EXPECT_EQ(on.emitterPoints, 256);
+  const double direct = 0.5 / kPi * 1.0 + 0.5 * 0.1;
+  int receivers = 0;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 12; ++x) {
+      if (off.standardError.at(x, y).a > 0.0f) {
+        EXPECT_EQ(on.radiance.at(x, y), off.radiance.at(x, y)) << "sphere pixel " << x << "," << y;
+        continue;
+      }
+      ++receivers;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(off.radiance.at(x, y)[c], direct, 1e-6) << "pixel " << x << "," << y;
+        EXPECT_EQ(off.standardError.at(x, y)[c], 0.0f);
+        EXPECT_NEAR(on.radiance.at(x, y)[c], off.radiance.at(x, y)[c] + on.emergent.at(x, y)[c], 1e-6);
+        EXPECT_GT(on.emergent.at(x, y)[c], 0.0f);
+      }
+    }
+  EXPECT_EQ(receivers, 44);
+  EXPECT_EQ(on.emergentPixels, 44);
+}
+
+// The command: --emergent=N writes REF_emergent.exr beside REF.exr, the receivers marked in its alpha,
+// with the emitter count and its error in the header.
+TEST(ReferenceIntegrator, CommandWritesTheEmergentImage) {
+  test::TempDir dir;
+  const std::string out = (dir.path() / "ref.exr").string();
+  const std::string preset = std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/emergent_sphere.json";
+  const test::CommandResult r = test::runTallow(
+      {"reference", "--preset", preset, "--spp", "2", "--points", "1024", "--emergent=64", "--out", out});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const gpu::Image emergent = gpu::readExr(app::emergentPath(out));
+  EXPECT_EQ(emergent.width, 12);
+  EXPECT_EQ(emergent.height, 4);
+  EXPECT_EQ(emergent.at(0, 0).a, 1.0f) << "a receiver pixel";
+  EXPECT_EQ(emergent.at(5, 1).a, 0.0f) << "a sphere pixel";
+  EXPECT_GT(emergent.at(0, 0).x, 0.0f);
+  const std::map<std::string, std::string> header = gpu::readExrStringAttributes(app::emergentPath(out));
+  EXPECT_EQ(header.at("tallow.emergent"), "on");
+  EXPECT_EQ(header.at("tallow.emitter_points"), "64");
+  EXPECT_EQ(header.at("tallow.emergent_pixels"), "44");
+  EXPECT_EQ(gpu::readExrStringAttributes(out).at("tallow.emergent"), "on");
+  EXPECT_EQ(app::emergentPath("/a/REF.exr"), std::filesystem::path("/a/REF_emergent.exr"));
+
+  const std::string plain = (dir.path() / "plain.exr").string();  // without --emergent: no file, "off"
+  ASSERT_EQ(test::runTallow({"reference", "--preset", preset, "--spp", "1", "--points", "1024", "--out", plain}).exitCode, 0);
+  EXPECT_FALSE(std::filesystem::exists(app::emergentPath(plain)));
+  EXPECT_EQ(gpu::readExrStringAttributes(plain).at("tallow.emergent"), "off");
 }
 
 }  // namespace
