@@ -187,10 +187,11 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                false),
                    [](auto& c) -> auto& { return c.render.sss.lightMapAuto; }));
   r.add(bind<bool>(withDefault(declare("sss.projected_area", "bool", "",
-                                       "Directional lights: the estimator's samples lie on the light's view plane, "
-                                       "whose area is cos θ_ℓ times the surface's; on: divide by it (Eq. 7 exactly), "
-                                       "off: the paper's Eq. 9 as printed, which loses a factor cos θ_ℓ at grazing "
-                                       "light."),
+                                       "The estimator's samples lie on a plane (a directional light's view plane, x_o's "
+                                       "tangent plane for a point light), not on the surface; on: weight each by the "
+                                       "surface's area per plane area (Eq. 7 exactly), off: the paper's Eq. 9 as "
+                                       "printed, which loses a factor cos θ_ℓ at grazing light and brightens concave "
+                                       "walls near a point light."),
                                true),
                    [](auto& c) -> auto& { return c.render.sss.projectedArea; }));
   r.add(bind<bool>(withDefault(declare("sss.texel_plane", "bool", "",

@@ -129,6 +129,15 @@ template glm::dvec3 pointOnTexel<float>(const glm::dvec3&, const glm::dvec3&, co
 template glm::dvec3 pointOnTexel<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
                                          bool);
 
+double planarAreaRatio(const glm::dvec3& no, const glm::dvec3& xj, const glm::dvec3& xl, const glm::dvec3& xi,
+                       const glm::dvec3& ni) {
+  return estimator_f64::sssPlanarAreaRatio(no, xj, xl, xi, ni);
+}
+double stereographicAreaRatio(const glm::dvec3& xo, const glm::dvec3& no, const glm::dvec3& xj, const glm::dvec3& xl,
+                              const glm::dvec3& xi, const glm::dvec3& ni) {
+  return estimator_f64::sssStereographicAreaRatio(xo, no, xj, xl, xi, ni);
+}
+
 double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta) {
   return estimator_f64::sssSamplingSigmaTr(estimator_f64::bssrdfCoefficients(sigma_a, sigma_s, g, eta));
 }

@@ -49,6 +49,14 @@ extern template glm::dvec3 stereographicLookupDirection<double>(const glm::dvec3
                                                                  const glm::dvec3&);
 glm::dvec3 planarLookupDirection(const glm::dvec3& xj, const glm::dvec3& xl);
 
+/// dA_i/dA_j for a point light at x_l: the surface area at x_i [its normal n_i] per area of x_o's
+/// tangent plane [normal n_o] at the sample x_j, through the planar or the stereographic (Eqs.
+/// 13–14) look-up (sss.projected_area; formulas in shaders/sss/estimator.glsl).
+double planarAreaRatio(const glm::dvec3& no, const glm::dvec3& xj, const glm::dvec3& xl, const glm::dvec3& xi,
+                       const glm::dvec3& ni);
+double stereographicAreaRatio(const glm::dvec3& xo, const glm::dvec3& no, const glm::dvec3& xj, const glm::dvec3& xl,
+                              const glm::dvec3& xi, const glm::dvec3& ni);
+
 /// x_i from the light G-buffer texel the look-up line origin + t·d (d unit) falls in, whose centre
 /// saw the surface point p with normal n: on the texel's tangent plane when onPlane (and the line
 /// is not grazing it), else at the texel's depth along the line (sss.texel_plane).

@@ -27,7 +27,7 @@ struct SssSettings {
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
   bool lightMapAuto = false;  ///< sss.light_map_auto: raise the light map size against pearling
   bool computeGather = true;  ///< sss.gather: false = the paper's fragment pass, true = compute pass
-  bool projectedArea = true;  ///< sss.projected_area: the view plane's Jacobian (false: the paper's Eq. 9)
+  bool projectedArea = true;  ///< sss.projected_area: the sampling plane's Jacobian (false: the paper's Eq. 9)
   bool texelPlane = true;     ///< sss.texel_plane: x_i on the light G-buffer texel's tangent plane (false: its depth)
 };
 

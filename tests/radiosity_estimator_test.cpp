@@ -452,6 +452,47 @@ TEST(StereographicLookup, HandComputedCase) {
   EXPECT_EQ(p, glm::dvec3(1, 0, 1));
 }
 
+// dA_i/dA_j of both look-ups against finite differences: x_j moves by h along two axes of x_o's
+// tangent plane, each position is looked up (the ray from x_ℓ along the look-up direction meets a
+// sphere of radius 4 centred away from the light, as the inside of a cup), and the parallelogram
+// of the two displaced x_i over h² is the area ratio. Tangent planes tilted against x_ℓ − x_o.
+TEST(PointLightAreaRatio, MatchesFiniteDifferencesOfTheLookUp) {
+  const glm::dvec3 centre(0.3, 0.1, -0.2), xl(0.0, 0.0, 0.0);
+  const double radius = 4.0;
+  const auto onSphere = [&](const glm::dvec3& dir) {  // the ray x_l + t·dir, t > 0, x_l inside
+    const glm::dvec3 d = glm::normalize(dir), oc = xl - centre;
+    const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+    return xl + (-b + std::sqrt(b * b - c)) * d;
+  };
+  int checked = 0;
+  for (std::uint32_t i = 0; i < 24; ++i) {
+    const glm::dvec3 xo = onSphere(haltonDirection<double>(i));
+    const glm::dvec3 no = glm::normalize(centre - xo);  // the cup's inner wall faces its centre
+    const glm::dvec3 t1 = glm::normalize(glm::cross(no, std::abs(no.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 t2 = glm::cross(no, t1);
+    const glm::dvec3 xj = xo + (0.1 + 0.25 * (i % 7)) * glm::normalize(std::cos(0.7 * i) * t1 + std::sin(0.7 * i) * t2);
+    for (const bool stereographic : {false, true}) {
+      const auto lookUp = [&](const glm::dvec3& p) {
+        return onSphere(stereographic ? stereographicLookupDirection<double>(xo, p, xl) : planarLookupDirection(p, xl));
+      };
+      const double h = 1e-5;
+      const glm::dvec3 du = (lookUp(xj + h * t1) - lookUp(xj - h * t1)) / (2.0 * h);
+      const glm::dvec3 dv = (lookUp(xj + h * t2) - lookUp(xj - h * t2)) / (2.0 * h);
+      const double numeric = glm::length(glm::cross(du, dv));
+      const glm::dvec3 xi = lookUp(xj), ni = glm::normalize(centre - xi);
+      const double ratio = stereographic ? stereographicAreaRatio(xo, no, xj, xl, xi, ni)
+                                         : planarAreaRatio(no, xj, xl, xi, ni);
+      EXPECT_NEAR(ratio / numeric, 1.0, 1e-6) << "sample " << i << (stereographic ? " stereographic" : " planar");
+      ++checked;
+    }
+  }
+  // x_j = x_o with the tangent plane normal to x_l − x_o: both look-ups are the identity to first order.
+  const glm::dvec3 xo(0, 0, 2), no(0, 0, -1);
+  EXPECT_NEAR(stereographicAreaRatio(xo, no, xo, xl, xo, no), 1.0, 1e-12);
+  EXPECT_NEAR(planarAreaRatio(no, xo, xl, xo, no), 1.0, 1e-12);
+  EXPECT_EQ(checked, 48);
+}
+
 TEST(StereographicLookup, IsTheInverseStereographicProjectionFromTheAntipode) {
   const glm::dvec3 xl(1.0, 2.0, -0.5);
   for (std::uint32_t i = 0; i < 50; ++i) {

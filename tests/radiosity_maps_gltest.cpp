@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -12,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/ply_writer.h"
+#include "geometry/primitives.h"
 #include "gpu/gl_objects.h"
 #include "sss/radiosity_estimator.h"
 #include "sss/radiosity_maps.h"
@@ -299,6 +303,78 @@ double frameVariance(const std::vector<std::string>& sets) {
     ++n;
   }
   return sum / n;
+}
+
+// A point light at the centre of a hollow marble sphere (inner radius R = 5 mm, 3 cm thick): the
+// inner wall is lit at normal incidence by E = I/R² everywhere, and for the standard dipole, which
+// depends on the chord r = |x_o − x_i| alone, Archimedes' dA = 2πr dr on a sphere makes
+// B = F_t(0) E ∫₀^{2R} R_d(r) 2πr dr exactly (the plane's total, cut at the diameter). Seen from the
+// centre, L = F_t(0)/π · B in every pixel. R is close to 1/σ_tr, so the samples' tangent plane
+// and the wall differ a lot: the stereographic look-up must count dA_i/dA_j (sss.projected_area);
+// the paper's Eq. 9, which leaves it out, is too bright. method=no-cache gathers per pixel, as the
+// maps' cameras outside cannot see the inner wall.
+TEST(RadiosityMaps, PointLightInsideAHollowSphereMatchesArchimedesIntegral) {
+  const double innerMm = 5.0, outerMm = 35.0, intensity = 2.5e-5;  // W/sr → E = 1 W/m² at the wall
+  geometry::TriangleMesh shell;
+  for (const double radius : {outerMm, innerMm}) {
+    const geometry::TriangleMesh sphere = geometry::makeSphere(160, 320);
+    const auto base = static_cast<std::uint32_t>(shell.positions.size());
+    const bool inner = radius == innerMm;
+    for (std::size_t i = 0; i < sphere.positions.size(); ++i) {
+      shell.positions.push_back(sphere.positions[i] * static_cast<float>(radius / 1000.0));
+      shell.normals.push_back(inner ? -sphere.normals[i] : sphere.normals[i]);  // the solid's outward normal
+    }
+    for (const auto& t : sphere.triangles)
+      shell.triangles.push_back(inner ? std::array<std::uint32_t, 3>{base + t[0], base + t[2], base + t[1]}
+                                      : std::array<std::uint32_t, 3>{base + t[0], base + t[1], base + t[2]});
+  }
+  test::TempDir dir;
+  geometry::writePly(dir.path() / "shell.ply", shell);
+  const double outerM = outerMm / 1000.0;
+  nlohmann::json preset = {
+      {"name", "shell"},
+      {"description", "a point light at the centre of a hollow marble sphere, seen from the centre"},
+      {"camera", {{"type", "perspective"}, {"position", {0, 0, 0}}, {"target", {0, 0, 1}}, {"up", {0, 1, 0}}, {"fov_deg", 20}}},
+      {"lights", {{{"type", "point"}, {"position", {0, 0, 0}}, {"intensity", {intensity, intensity, intensity}}, {"shadows", true}}}},
+      {"objects", {{{"name", "shell"}, {"mesh", (dir.path() / "shell.ply").string()}, {"material", "Marble"},
+                    {"albedo", {0.8, 0.8, 0.8}}, {"position", {0, -outerM, 0}}, {"scale", 2.0 * outerM}}}},
+      {"ambient", {0, 0, 0}},
+      {"background", {0, 0, 0}},
+      {"animation", {{"duration_s", 0}, {"loop", true}}},
+      {"settings", {{"sss.model", "standard"}}}};
+  std::ofstream(dir.path() / "shell.json") << preset.dump(2);
+  double ratios[2][3] = {};
+  for (const bool projected : {true, false}) {
+    PresetSession s((dir.path() / "shell.json").string(),
+                    {"render.width=12", "render.height=12", "method=no-cache", "sss.samples=512", "sss.light_map_size=512",
+                     "sss.stereographic=true", std::string("sss.projected_area=") + (projected ? "true" : "false")});
+    const gpu::Image image = s.render();
+    const sss::Material& m = s.scene().objects[0].material;
+    const double E = intensity / (innerMm * innerMm * 1e-6);
+    for (int c = 0; c < 3; ++c) {
+      // ∫₀^{2R} R_d(r) 2πr dr by composite Simpson on 4000 intervals.
+      const int n = 4000;
+      const double h = 2.0 * innerMm / n;
+      double integral = 0.0;
+      for (int i = 0; i <= n; ++i) {
+        const double r = i * h, w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        integral += w * test::jensenRd(r, m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta) * 2.0 * 3.14159265358979 * r;
+      }
+      integral *= h / 3.0;
+      const double ft = test::normalTransmittance(m.eta);
+      const double expected = ft * ft * E * integral / 3.14159265358979;
+      double sum = 0.0;
+      for (const glm::vec4& p : image.pixels) sum += p[c];
+      ratios[projected ? 0 : 1][c] = sum / double(image.pixels.size()) / expected;
+      std::printf("[ maps ] hollow sphere band %d, %s: L / (F_t² E ∫₀^2R R_d 2πr dr/π) = %.4f (the cut keeps %.1f%% of R_d,total)\n",
+                  c, projected ? "with dA_i/dA_j" : "paper's Eq. 9", ratios[projected ? 0 : 1][c],
+                  100.0 * integral / test::jensenTotalRd(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta));
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(ratios[0][c], 1.0, 0.02) << "band " << c;
+    EXPECT_GT(ratios[1][c], 1.1) << "without the area ratio the wall is too bright, band " << c;
+  }
 }
 
 TEST(RadiosityMaps, StereographicCorrectionLowersTheVarianceInsideTheCandleHolder) {

@@ -143,6 +143,46 @@ TALLOW_FN real3 sssStereographicLookupDirection(real3 xo, real3 xj, real3 xl) {
   return a - real(2) * dot(a, l) * l;
 }
 
+// --- The sampling plane's area against the surface's (point lights) ---------------------------
+// The samples x_j have the density of Eq. 12 on x_o's tangent plane; the look-up moves each to the
+// surface point x_i, so Eq. 7 over the surface needs dA_i/dA_j in every term (the paper's Eq. 9
+// leaves it out). Both look-ups are projections through a point, so areas follow solid angles:
+// dω = dA cos β / d² at each end, with β between the ray and the area's normal.
+//   Planar (x_i on the ray x_ℓ → x_j):  dA_i/dA_j = (cos β_j / d_j²) · (d_i² / cos θ_i).
+//   Stereographic (Eqs. 13–14): x_j → x_s on the sphere of radius R = |x_ℓ − x_o| about x_ℓ along the
+//   line from the antipode x_a = 2x_ℓ − x_o; a chord from x_a meets the sphere at the same angle β
+//   at both ends and is 2R cos β long, so dA_s/dA_j = 4R² cos β cos β_j / |x_j − x_a|² (= 1 at
+//   x_j = x_o; (1 + r²/4R²)⁻² when the tangent plane is normal to x_ℓ − x_o, the conformal factor);
+//   then x_s → x_i through x_ℓ: dA_i/dA_s = d_i² / (R² cos θ_i).
+// cos θ_i = |n_i · (x_i − x_ℓ)/d_i| is the cos θ_ℓ of the term, so the product stays finite at
+// grazing light (bounded below by 10⁻³ as for directional lights).
+TALLOW_FN real sssSurfaceOverSolidAngle(real3 xi, real3 ni, real3 xl) {
+  real3 di = xi - xl;
+  real d2 = dot(di, di);
+  if (!(d2 > real(0))) return real(0);
+  return d2 / max(abs(dot(di, ni)) / sqrt(d2), real(1e-3));  // d_i² / cos θ_i
+}
+TALLOW_FN real sssPlanarAreaRatio(real3 no, real3 xj, real3 xl, real3 xi, real3 ni) {
+  real3 dj = xj - xl;
+  real dj2 = dot(dj, dj);
+  if (!(dj2 > real(0))) return real(0);
+  real cosJ = abs(dot(dj, no)) / sqrt(dj2);
+  return cosJ / dj2 * sssSurfaceOverSolidAngle(xi, ni, xl);
+}
+TALLOW_FN real sssStereographicAreaRatio(real3 xo, real3 no, real3 xj, real3 xl, real3 xi, real3 ni) {
+  real3 a = xl - xo;
+  real r2 = dot(a, a);
+  if (!(r2 > real(0))) return sssPlanarAreaRatio(no, xj, xl, xi, ni);
+  real3 v = xj - (xl + a);
+  real l2 = dot(v, v);
+  if (!(l2 > real(0))) return real(0);
+  real l = sqrt(l2);
+  real cosB = abs(dot(v, a)) / (l * sqrt(r2));
+  real cosJ = abs(dot(v, no)) / l;
+  real sphereOverPlane = real(4) * r2 * cosB * cosJ / l2;  // dA_s/dA_j
+  return sphereOverPlane / r2 * sssSurfaceOverSolidAngle(xi, ni, xl);
+}
+
 // --- x_i from the light G-buffer texel (§3.1) -----------------------------------------------
 // The sample looks the G-buffer up along the line x(t) = origin + t d (d unit: toward the light from
 // x_j for a directional light, from the light through x_j for a point light); the texel holds the

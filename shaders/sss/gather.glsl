@@ -16,7 +16,7 @@ uniform int uBssrdfModel;               // BSSRDF_MODEL_*
 uniform int uSamples;                   // N
 uniform int uFrame;                     // frame index of this accumulation (seeds)
 uniform int uStereographic;             // 1: Eqs. 13–14 for point lights
-uniform int uProjectedArea;             // 1: divide by the view plane's Jacobian cos θ_ℓ (sss.projected_area)
+uniform int uProjectedArea;             // 1: the sampling plane's area against the surface's (sss.projected_area)
 uniform int uTexelPlane;                // 1: x_i on the G-buffer texel's tangent plane (sss.texel_plane)
 
 const float MM_PER_M = 1000.0;
@@ -72,7 +72,12 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
         vec3 toLight = xl - xi;
         float d2 = dot(toLight, toLight) / (MM_PER_M * MM_PER_M);  // m²: E = I / d²
         // E = I/d² at x_i varies per sample, so it enters the sum (Eq. 9 with L_ℓ inside).
-        acc += sssRadiosityTerm(uBssrdfModel, xi, ni, normalize(toLight), xo, no, k, s.weight) / max(d2, 1e-12);
+        float term = sssRadiosityTerm(uBssrdfModel, xi, ni, normalize(toLight), xo, no, k, s.weight) / max(d2, 1e-12);
+        // The samples' density is on x_o's tangent plane; Eq. 7 integrates over the surface.
+        if (uProjectedArea != 0 && term > 0.0)
+          term *= uStereographic != 0 ? sssStereographicAreaRatio(xo, no, s.xj, xl, xi, ni)
+                                      : sssPlanarAreaRatio(no, s.xj, xl, xi, ni);
+        acc += term;
       }
       sum += sssRadiosityFromSum(acc, uSssPointIntensity[l][c], uSamples);
     }
