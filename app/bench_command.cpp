@@ -268,24 +268,16 @@ json errorJson(const gpu::ImageError& e) {
 void writePlots(const std::filesystem::path& outDir, const std::string& title, bool hasRows) {
   const std::filesystem::path out = std::filesystem::absolute(outDir);  // the kept script runs from anywhere
   if (!hasRows) return;
-  if (!gnuplotAvailable()) {
-    std::fprintf(stderr, "tallow: gnuplot is not installed; wrote the CSV files without plots\n");
-    return;
-  }
-  const auto speedTmp = out / ".speed_error.png.tmp";
-  const auto convTmp = out / ".convergence.png.tmp";
   runGnuplot(
       out / "bench.gp",
-      [&](std::FILE* f) {
+      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
         // bench.csv: column 1 the row's name; the others are looked up by header name. The bench
-        // draws into temporary files; the script is kept, to redraw by hand (see its first line).
+        // draws into temporary files; the script is kept, to redraw by hand (its "# redraw" line).
         std::fprintf(f,
                      "# redraw: gnuplot -e \"speed_png='speed_error.png'; convergence_png='convergence.png'\" "
                      "bench.gp\n"
                      "if (!exists(\"speed_png\")) speed_png = '%s'\n"
                      "if (!exists(\"convergence_png\")) convergence_png = '%s'\n"
-                     "set datafile separator ','\n"
-                     "set terminal pngcairo size 900,600 font ',11'\n"
                      "set key autotitle columnhead\n"
                      "set output speed_png\n"
                      "set title \"%s: speed against error\" noenhanced\n"
@@ -300,10 +292,10 @@ void writePlots(const std::filesystem::path& outDir, const std::string& title, b
                      "rows = system(\"tail -n +2 '%s' | cut -d, -f1 | uniq\")\n"
                      "plot for [r in rows] '%s' using ((strcol(1) eq r) ? column('frame') + 1 : 1/0):'rel_rmse' "
                      "with linespoints title r\n",
-                     speedTmp.c_str(), convTmp.c_str(), title.c_str(), (out / "bench.csv").c_str(), title.c_str(),
+                     tmp[0].c_str(), tmp[1].c_str(), title.c_str(), (out / "bench.csv").c_str(), title.c_str(),
                      (out / "convergence.csv").c_str(), (out / "convergence.csv").c_str());
       },
-      {{speedTmp, out / "speed_error.png"}, {convTmp, out / "convergence.png"}}, "the bench plots",
+      {out / "speed_error.png", out / "convergence.png"}, "the bench plots",
       /*keepScript=*/true);
 }
 

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <functional>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace tallow::app {
@@ -14,16 +13,15 @@ namespace tallow::app {
 /// Whether `gnuplot` is on PATH.
 bool gnuplotAvailable();
 
-/// A plot gnuplot writes to `temporary`, renamed to `final` on success.
-struct PlotOutput {
-  std::filesystem::path temporary, final;
-};
-
-/// Writes the script with `writeScript` to `script`, runs gnuplot on it, removes the script unless
-/// `keepScript` (to redraw the plots by hand), and renames every output. Throws
-/// std::runtime_error("gnuplot failed to draw " + what) when gnuplot fails (the temporary outputs
-/// removed).
-void runGnuplot(const std::filesystem::path& script, const std::function<void(std::FILE*)>& writeScript,
-                const std::vector<PlotOutput>& outputs, const std::string& what, bool keepScript = false);
+/// Writes the script (a preamble that reads comma-separated data and draws 900x600 PNGs, then the
+/// lines `writeScript` prints; it gets, for each of `outputs`, the temporary file gnuplot must draw
+/// into, `.NAME.tmp` beside it) to `script`, runs gnuplot on it, removes the script unless
+/// `keepScript` (to redraw the plots by hand), and renames every temporary file onto its output;
+/// returns true. Without gnuplot on PATH, prints one note ("wrote the CSV files without plots"),
+/// writes nothing and returns false. Throws std::runtime_error("gnuplot failed to draw " + what)
+/// when gnuplot fails (the temporary files removed).
+using PlotScriptWriter = std::function<void(std::FILE*, const std::vector<std::filesystem::path>& temporaries)>;
+bool runGnuplot(const std::filesystem::path& script, const PlotScriptWriter& writeScript,
+                const std::vector<std::filesystem::path>& outputs, const std::string& what, bool keepScript = false);
 
 }  // namespace tallow::app

@@ -77,18 +77,10 @@ std::string number(double v) {
 }
 
 void writePlots(const std::filesystem::path& out, const std::string& title, bool haveStdErr) {
-  if (!gnuplotAvailable()) {
-    std::fprintf(stderr, "tallow: gnuplot is not installed; wrote the CSV files without plots\n");
-    return;
-  }
-  const auto xTmp = out / ".profile_x.png.tmp";
-  const auto mapTmp = out / ".profile_map.png.tmp";
   runGnuplot(
       out / ".profile.gp",
-      [&](std::FILE* f) {
+      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
         std::fprintf(f,
-                     "set datafile separator ','\n"
-                     "set terminal pngcairo size 900,600 font ',11'\n"
                      "set output '%s'\n"
                      "set title \"%s\" noenhanced\n"
                      "set xlabel 'x [mm]'\nset ylabel 'R_d [mm^{-2}]'\nset logscale y\nset format y '10^{%%L}'\n"
@@ -101,10 +93,10 @@ void writePlots(const std::filesystem::path& out, const std::string& title, bool
                      "set palette defined (0 '#000004', 1 '#3b0f70', 2 '#8c2981', 3 '#de4968', 4 '#fe9f6d', 5 '#fcfdbf')\n"
                      "plot '%s' using 1:2:($3 > 0 ? log10($3) : 1/0) with image notitle, \\\n"
                      "     '' using 1:($4 == 1 ? $2 : 1/0) with points pt 5 ps 0.3 lc rgb '#00ff00' title 'negative (raw S_d < 0)'\n",
-                     xTmp.c_str(), title.c_str(), (out / "profile_x.csv").c_str(), haveStdErr ? "" : "", mapTmp.c_str(),
+                     tmp[0].c_str(), title.c_str(), (out / "profile_x.csv").c_str(), haveStdErr ? "" : "", tmp[1].c_str(),
                      (out / "profile_map.csv").c_str());
       },
-      {{xTmp, out / "profile_x.png"}, {mapTmp, out / "profile_map.png"}}, "the profile plots");
+      {out / "profile_x.png", out / "profile_map.png"}, "the profile plots");
 }
 
 }  // namespace
