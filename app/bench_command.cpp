@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -410,6 +411,9 @@ int runBench(const BenchOptions& o) {
   std::vector<std::string> passNames;  // in the order first seen
   for (const Case& c : cases) {
     const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
+    if (o.scene.explain)
+      for (const auto& p : sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render))
+        std::printf("%s: pass %-20s %s\n", c.name.c_str(), p.name.c_str(), p.reason.c_str());
     RowResult row = runRow(c, ref, shaders, o.frames, o.timeS);
     if (o.equalTime) {
       LoadedScene truth = loadScene(ref.scene);
