@@ -416,6 +416,22 @@ TEST(ReferenceIntegrator, EmergentLightIsOffByDefault) {
   EXPECT_EQ(on.emergentPixels, 44);
 }
 
+// The emitter points and their gathers are counter-based too: the same result on 1 and 2 threads.
+TEST(ReferenceIntegrator, EmergentLightIsDeterministicAcrossThreadCounts) {
+  const app::LoadedScene scene = emergentSphere();
+  sss::ReferenceSettings s;
+  s.maxPasses = 2;
+  s.pointsPerPass = 2048;
+  s.emergentLight = true;
+  s.emitterPoints = 128;
+  s.threads = 1;
+  const sss::ReferenceResult one = sss::renderReference(scene.config.scene, scene.config.render, s);
+  s.threads = 2;
+  const sss::ReferenceResult two = sss::renderReference(scene.config.scene, scene.config.render, s);
+  EXPECT_EQ(one.emergent.pixels, two.emergent.pixels);
+  EXPECT_EQ(one.radiance.pixels, two.radiance.pixels);
+}
+
 // The command: --emergent=N writes REF_emergent.exr beside REF.exr, the receivers marked in its alpha,
 // with the emitter count and its error in the header.
 TEST(ReferenceIntegrator, CommandWritesTheEmergentImage) {
@@ -437,6 +453,12 @@ TEST(ReferenceIntegrator, CommandWritesTheEmergentImage) {
   EXPECT_EQ(header.at("tallow.emergent_pixels"), "44");
   EXPECT_EQ(gpu::readExrStringAttributes(out).at("tallow.emergent"), "on");
   EXPECT_EQ(app::emergentPath("/a/REF.exr"), std::filesystem::path("/a/REF_emergent.exr"));
+
+  const test::CommandResult bad = test::runTallow(
+      {"reference", "--preset", preset, "--spp", "1", "--emergent=-1", "--out", (dir.path() / "bad.exr").string()});
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_EQ(test::lineCount(bad.err), 1) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "bad.exr"));
 
   const std::string plain = (dir.path() / "plain.exr").string();  // without --emergent: no file, "off"
   ASSERT_EQ(test::runTallow({"reference", "--preset", preset, "--spp", "1", "--points", "1024", "--out", plain}).exitCode, 0);
