@@ -135,13 +135,16 @@ gpu::Image readReferenceImage(const std::filesystem::path& file) {
 
 /// --reference REF.exr and REF_stderr.exr, checked against the render size.
 void loadGivenReference(const BenchOptions& o, int width, int height, ReferenceGroup& g) {
-  g.radiance = readReferenceImage(o.reference);
-  g.standardError = readReferenceImage(standardErrorPath(o.reference));
-  for (const gpu::Image* i : {&g.radiance, &g.standardError})
-    if (i->width != width || i->height != height)
-      throw InputError("--reference: " + o.reference + " is " + std::to_string(i->width) + "x" +
-                       std::to_string(i->height) + " but the bench renders " + std::to_string(width) + "x" +
+  const std::filesystem::path files[2] = {o.reference, standardErrorPath(o.reference)};
+  g.radiance = readReferenceImage(files[0]);
+  g.standardError = readReferenceImage(files[1]);
+  for (int k = 0; k < 2; ++k) {
+    const gpu::Image& i = k == 0 ? g.radiance : g.standardError;
+    if (i.width != width || i.height != height)
+      throw InputError("--reference: " + files[k].string() + " is " + std::to_string(i.width) + "x" +
+                       std::to_string(i.height) + " but the bench renders " + std::to_string(width) + "x" +
                        std::to_string(height));
+  }
   g.info = {{"file", std::filesystem::absolute(o.reference).string()}};
   try {
     for (const auto& [k, v] : gpu::readExrStringAttributes(o.reference)) g.info["attributes"][k] = v;
