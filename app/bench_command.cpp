@@ -266,7 +266,7 @@ std::string cell(const json& v) {
 }
 
 json errorJson(const gpu::ImageError& e) {
-  return {{"rmse", e.rmse}, {"rel_rmse", e.relRmse}, {"max", e.maxError}};
+  return {{"rmse", e.rmse}, {"rel_rmse", e.relRmse}, {"max", e.maxError}, {"mean_ratio", e.meanRatio}};
 }
 
 void writePlots(const std::filesystem::path& outDir, const std::string& title, bool hasRows) {

@@ -31,7 +31,7 @@ std::size_t objectPixels(const Image& mask) {
 
 ImageError imageError(const Image& image, const Image& reference, const Image& mask) {
   checkSizes(image, reference, mask);
-  double sumErr2 = 0.0, sumRef2 = 0.0, maxErr = 0.0;
+  double sumErr2 = 0.0, sumRef2 = 0.0, maxErr = 0.0, sumImage = 0.0, sumRef = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < mask.pixels.size(); ++i) {
     if (!isObject(mask.pixels[i])) continue;
@@ -40,6 +40,8 @@ ImageError imageError(const Image& image, const Image& reference, const Image& m
     const double e2 = glm::dot(d, d);
     sumErr2 += e2;
     sumRef2 += glm::dot(r, r);
+    sumImage += double(image.pixels[i].r) + image.pixels[i].g + image.pixels[i].b;
+    sumRef += r.r + r.g + r.b;
     maxErr = std::max(maxErr, std::sqrt(e2));
     ++n;
   }
@@ -47,6 +49,7 @@ ImageError imageError(const Image& image, const Image& reference, const Image& m
   e.pixels = n;
   e.rmse = std::sqrt(sumErr2 / double(n));
   e.maxError = maxErr;
+  e.meanRatio = sumRef > 0.0 ? sumImage / sumRef : (sumImage > 0.0 ? std::numeric_limits<double>::infinity() : 1.0);
   const double refRms = std::sqrt(sumRef2 / double(n));
   e.relRmse = refRms > 0.0 ? e.rmse / refRms : (e.rmse > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   return e;

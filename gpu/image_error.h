@@ -17,6 +17,9 @@ struct ImageError {
   double rmse = 0.0;
   double relRmse = 0.0;  ///< RMSE / RMS of the reference (infinite for a black reference and RMSE > 0)
   double maxError = 0.0;
+  /// Σ_p Σ_c image / Σ_p Σ_c reference: the bias of the mean, which the RMSE mixes with noise
+  /// (infinite for a black reference with a non-black image; 1 when both are black).
+  double meanRatio = 1.0;
   std::size_t pixels = 0;  ///< object pixels compared
 };
 

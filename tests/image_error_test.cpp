@@ -39,6 +39,23 @@ TEST(ImageError, ConstantOffsetInAllBands) {
   EXPECT_NEAR(e.rmse, std::sqrt(3.0) * delta, 1e-12);
   EXPECT_NEAR(e.maxError, std::sqrt(3.0) * delta, 1e-12);
   EXPECT_NEAR(e.relRmse, std::sqrt(3.0) * delta / (std::sqrt(3.0) * c), 1e-12);
+  EXPECT_NEAR(e.meanRatio, (c + delta) / c, 1e-12);  // the bias of the mean: 1.5
+}
+
+TEST(ImageError, MeanRatioSeesBiasThatNoiseHides) {
+  // Half the pixels +δ, half −δ: the RMSE is √3 δ but the mean is unbiased (ratio 1); black on
+  // black is ratio 1, light on black infinite.
+  const gpu::Image mask = rectMask(0, 0, 4, 2);
+  const gpu::Image ref = constant(glm::vec3(0.5f));
+  gpu::Image img = ref;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) img.at(x, y) = glm::vec4(glm::vec3(x % 2 ? 0.625f : 0.375f), 1.0f);
+  const gpu::ImageError e = gpu::imageError(img, ref, mask);
+  EXPECT_NEAR(e.rmse, std::sqrt(3.0) * 0.125, 1e-12);
+  EXPECT_DOUBLE_EQ(e.meanRatio, 1.0);
+  const gpu::Image black = constant(glm::vec3(0.0f));
+  EXPECT_DOUBLE_EQ(gpu::imageError(black, black, mask).meanRatio, 1.0);
+  EXPECT_TRUE(std::isinf(gpu::imageError(ref, black, mask).meanRatio));
 }
 
 TEST(ImageError, SinglePixelDiffering) {
