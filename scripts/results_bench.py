@@ -130,6 +130,22 @@ def fit_line(xs, ys):
     return my - b * mx, b
 
 
+def settings_table(add, b, keys):
+    """One row per swept setting of a bench: its converged error, without the reference's noise, and
+    the bias of the mean; then the reference's ε."""
+    add("| " + " | ".join(k.split(".", 1)[-1] for k in keys) + " | converged rel. RMSE | without ε | mean L / reference |")
+    add("|" + "---|" * len(keys) + "---:|---:|---:|")
+    for row in b["rows"]:
+        eps = reference_error(b, row)
+        cells = [row["settings"][k] for k in keys]
+        cells += [pct(row["last_rel_rmse"]), pct(without_reference_noise(row["last_rel_rmse"], eps)),
+                  fmt(row["last_error"].get("mean_ratio"))]
+        add("| " + " | ".join(cells) + " |")
+    add("")
+    add("(reference ε = %s)" % pct(reference_error(b, b["rows"][0])))
+    add("")
+
+
 def report(work, md, images):
     os.makedirs(images, exist_ok=True)
     rel_images = os.path.relpath(images, os.path.dirname(md))
@@ -193,18 +209,7 @@ def report(work, md, images):
                      ("bunny lit from low on its side, light direction (%s) (%dx%d)" % (GRAZING_LIGHT, graz["width"], graz["height"]), graz)):
         add("*%s*" % title)
         add("")
-        add("| projected_area | texel_plane | converged rel. RMSE | without ε | mean L / reference |")
-        add("|---|---|---:|---:|---:|")
-        for row in b["rows"]:
-            eps = reference_error(b, row)
-            e = row["last_error"]
-            ratio = e.get("mean_ratio")
-            add("| %s | %s | %s | %s | %s |" % (row["settings"]["sss.projected_area"], row["settings"]["sss.texel_plane"],
-                                              pct(row["last_rel_rmse"]), pct(without_reference_noise(row["last_rel_rmse"], eps)),
-                                              fmt(ratio)))
-        add("")
-        add("(reference ε = %s)" % pct(reference_error(b, b["rows"][0])))
-        add("")
+        settings_table(add, b, ["sss.projected_area", "sss.texel_plane"])
 
     # --- Point light -----------------------------------------------------------------------------
     cand = load(f"{work}/candle/bench.json")
@@ -215,16 +220,7 @@ def report(work, md, images):
     add("samples from x_o's tangent plane to the surface; `sss.projected_area` weights each by dA_i/dA_j.")
     add("The reference meshes the field with OpenVDB, the GPU with its own surface nets (up to a cell apart).")
     add("")
-    add("| projected_area | converged rel. RMSE | without ε | mean L / reference |")
-    add("|---|---:|---:|---:|")
-    for row in cand["rows"]:
-        eps = reference_error(cand, row)
-        add("| %s | %s | %s | %s |" % (row["settings"]["sss.projected_area"], pct(row["last_rel_rmse"]),
-                                      pct(without_reference_noise(row["last_rel_rmse"], eps)),
-                                      fmt(row["last_error"].get("mean_ratio"))))
-    add("")
-    add("(reference ε = %s)" % pct(reference_error(cand, cand["rows"][0])))
-    add("")
+    settings_table(add, cand, ["sss.projected_area"])
 
     # --- Fig. 9 ----------------------------------------------------------------------------------
     sc = load(f"{work}/scales/bench.json")
