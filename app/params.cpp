@@ -175,6 +175,12 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                         "(Algorithm 1).", 0, 1),
                                 0.005),
                     [](auto& c) -> auto& { return c.render.sss.comb; }));
+  r.add(bind<float>(withDefault(declare("sss.view_weight", "float", "",
+                                        "p: Algorithm 1 weights each map that sees x_o by cos^p θ, θ between n_o and "
+                                        "the map's direction, so that maps seeing x_o face-on (sharp texels) decide; 0 "
+                                        "is the paper's equal weighting (docs/radiosity-maps.md, RESULTS.md).", 0, 8),
+                                2.0),
+                    [](auto& c) -> auto& { return c.render.sss.viewWeight; }));
   r.add(bind<int>(withDefault(declare("sss.frames", "int", "frames",
                                       "Frames accumulated while light and geometry stay still; then the maps are "
                                       "converged and only the camera pass runs.", 1, 1 << 20),

@@ -23,6 +23,7 @@ struct SssSettings {
   int lightMapSize = 512;     ///< sss.light_map_size [texels] of each light G-buffer
   float bias = 0.0f;          ///< sss.bias: ε_bias [× the translucent objects' bounding radius]
   float comb = 0.0f;          ///< sss.comb: ε_comb [× the translucent objects' bounding radius]
+  float viewWeight = 0.0f;    ///< sss.view_weight: p of Algorithm 1's per-map weight cos^p θ (0: the paper)
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
   bool lightMapAuto = false;  ///< sss.light_map_auto: raise the light map size against pearling

@@ -111,6 +111,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uMapFrames", maps->frames());
     p.set("uEpsBias", settings.sss.bias * radius);
     p.set("uEpsComb", settings.sss.comb * radius);
+    p.set("uViewWeight", settings.sss.viewWeight);
     maps->maps().bind(kMapsUnit);
     maps->mapDepth().bind(kMapDepthUnit);
   } else {

@@ -412,6 +412,35 @@ TEST(RadiosityMaps, SixteenMapsSeeAlmostEveryVisiblePixelOfTheBunny) {
   EXPECT_LE(c.unseenShare(), 0.005);
 }
 
+TEST(RadiosityMaps, ViewWeightKeepsCoverageAndAUniformB) {
+  // sss.view_weight p weights each map by cos^p θ and normalises by the weights' sum: (a) every
+  // pixel some map sees keeps a B (the same pixels are unseen for p = 0 and p = 4); (b) where B is
+  // the same in every map — the slab's top under normal light, seen by K maps at various θ — the
+  // weighted mean is that B for any p (same seeds: the maps are identical, only step 3 differs).
+  std::vector<sss::MapCoverage> coverage;
+  for (const char* p : {"sss.view_weight=0", "sss.view_weight=4"}) {
+    PresetSession s("bunny", {"render.width=160", "render.height=90", "sss.maps=4", "sss.samples=1",
+                              "sss.map_size=128", "sss.light_map_size=128", p});
+    s.render();
+    coverage.push_back(s.renderer().mapCoverage());
+  }
+  EXPECT_GT(coverage[0].unseenPixels, 0u) << "K = 4 should leave some pixels unseen, or (a) tests nothing";
+  EXPECT_EQ(coverage[0].unseenPixels, coverage[1].unseenPixels);
+  EXPECT_EQ(coverage[0].translucentPixels, coverage[1].translucentPixels);
+  std::vector<gpu::Image> images;
+  for (const char* p : {"sss.view_weight=0", "sss.view_weight=4"}) {
+    PresetSession s("slab", {"render.width=32", "render.height=32", "sss.maps=6", "sss.samples=32", "sss.map_size=128",
+                             "sss.light_map_size=256", p});
+    for (int f = 0; f < 4; ++f) s.render();
+    images.push_back(s.render());
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double ratio = centreMean(images[1], c) / centreMean(images[0], c);
+    std::printf("[ maps ] slab band %d: B with cos^4 weights / equal weights = %.4f\n", c, ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.01) << "band " << c;
+  }
+}
+
 void expectFiniteMaps(PresetSession& s, const std::string& what) {
   const gpu::Image image = s.render();
   for (const glm::vec4& p : image.pixels)

@@ -1,11 +1,13 @@
 // Step 3 of the paper: Algorithm 1, the scattered radiosity B at x_o from the K maps, each
 // weighted by whether its camera sees x_o (a depth comparison with ε_bias, four bilinear taps
 // around the point so that texels near a map's silhouette blend), after moving x_o by ε_comb
-// toward −n_o in the part perpendicular to the map direction. B = colour / (F n).
+// toward −n_o in the part perpendicular to the map direction, and by cos^p θ (sss.view_weight;
+// p = 0 is the paper's equal weighting). B = colour / (F n).
 uniform int uMapCount;                 // K
 uniform int uMapFrames;                // F
 uniform float uEpsBias;                // ε_bias, world units
 uniform float uEpsComb;                // ε_comb, world units
+uniform float uViewWeight;             // p of the weight cos^p θ of a map seeing x_o at θ (0: the paper)
 uniform sampler2DArray uMaps;          // Σ over frames of B_N, with mipmaps
 uniform sampler2DArrayShadow uMapDepth;
 struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // depthScale.x: depth units per metre
@@ -29,6 +31,10 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
                       texture(uMapDepth, vec4(t.xy + vec2(texel.x, -texel.y), float(k), z)) +
                       texture(uMapDepth, vec4(t.xy + vec2(-texel.x, texel.y), float(k), z)) +
                       texture(uMapDepth, vec4(t.xy + vec2(texel.x, texel.y), float(k), z)));
+    // A map that sees x_o at θ from its normal spreads a texel over 1/cos θ of surface (and its
+    // mipmaps blur further): weighting by cos^p θ lets the maps that see x_o face-on decide, while
+    // the normalisation by n keeps every point that any map sees.
+    if (uViewWeight > 0.0) v *= pow(max(cosTheta, 1e-4), uViewWeight);
     if (v <= 0.0) continue;
     colour += v * textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy).rgb;
     n += v;
