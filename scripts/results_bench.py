@@ -22,6 +22,9 @@ MATERIALS = ["Marble", "White Grapefruit Juice", "Strawberry Shampoo"]
 GRAZING_LIGHT = "-0.97,0.17,0.17"
 OCCUPANCY_FOVS = [35, 28, 22, 17, 13]
 COVERAGE_KS = [1, 2, 4, 8, 16, 32]
+SCALES = [0.01, 0.1, 1.0]
+# presets/bunny.json's camera (position, target) for the 0.1 m bunny; scaled with the bunny.
+BUNNY_CAMERA = ((0.05, 0.13, 0.32), (0.0, 0.045, 0.0))
 
 
 def tallow(*args):
@@ -43,8 +46,8 @@ def run(work, quick):
     ref_loose = ["--ref-spp", "2"] if quick else ["--ref-rel-error", "0.04"]
     # Figs. 6 and 8; target 1 (K = 16, the bunny preset's default, marble at 0.1 m).
     bench(f"{work}/materials", "bunny", big,
-          ["--methods", "radiosity-maps", "--set", f"sss.frames={frames}", "--sweep", "material=" + ",".join(MATERIALS)],
-          ref_tight)
+          ["--methods", "radiosity-maps", "--set", f"sss.frames={frames}", "--sweep", "material=" + ",".join(MATERIALS),
+           "--sweep", "sss.view_weight=0,2"], ref_tight)
     # Target 2: grazing incidence. The slab lit at 60 degrees (exact answer known) and the bunny lit
     # from low on its side, with the two corrections off and on.
     fixes = ["--sweep", "sss.projected_area=false,true", "--sweep", "sss.texel_plane=false,true"]
@@ -58,10 +61,14 @@ def run(work, quick):
     bench(f"{work}/candle", "candle", small,
           ["--time", "5", "--methods", "radiosity-maps", "--set", f"sss.frames={frames}",
            "--sweep", "sss.projected_area=false,true"], ["--ref-spp", "2" if quick else "16"])
-    # Fig. 9 and target 3: equal time at three scales; the no-cache gather beside the maps.
-    bench(f"{work}/scales", "bunny", small,
-          ["--methods", "radiosity-maps,no-cache", "--set", f"sss.frames={frames}", "--sweep", "scale=0.01,0.1,1",
-           "--equal-time"], ref_loose)
+    # Fig. 9 and target 3: equal time at three scales, the camera moved with the bunny so that it
+    # frames it the same; the no-cache gather beside the maps.
+    for scale in SCALES:
+        f = scale / 0.1
+        bench(f"{work}/scale_{scale}", "bunny", small,
+              ["--methods", "radiosity-maps,no-cache", "--set", f"sss.frames={frames}", "--set", f"scale={scale}",
+               "--set", "camera.position=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[0]),
+               "--set", "camera.target=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[1]), "--equal-time"], ref_loose)
     # Fig. 11 and target 4: cost against screen occupancy at 1024x1024 (the chocolate-milk blob,
     # animated, so the maps restart every frame as in the paper), K = 10 maps.
     size = "256x256" if quick else "1024x1024"
@@ -171,26 +178,30 @@ def report(work, md, images):
     add("")
     add("Bunny, 0.1 m, directional light, %dx%d, K = 16, N = 8, `sss.frames` = %s; each material has its own"
         % (mat["width"], mat["height"], mat["rows"][0]["parameters"]["sss.frames"]))
-    add("reference. `first` is the first frame after a restart, `converged` the last.")
+    add("reference. `first` is the first frame after a restart, `converged` the last. `view_weight` p weights")
+    add("Algorithm 1's maps by cos^p θ (0: the paper's equal weights; 2: the default, docs/radiosity-maps.md).")
     add("")
-    add("| material | reference ε | first frame rel. RMSE | converged rel. RMSE | converged, without ε | max error | frame [ms] |")
-    add("|---|---:|---:|---:|---:|---:|---:|")
-    marble = None
+    add("| material | view_weight | reference ε | first frame rel. RMSE | converged rel. RMSE | converged, without ε | mean L / reference | max error | frame [ms] |")
+    add("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    marble = {}
     for row in mat["rows"]:
         eps = reference_error(mat, row)
         ours = without_reference_noise(row["last_rel_rmse"], eps)
-        add("| %s | %s | %s | %s | %s | %s | %s |" % (
-            row["settings"]["material"], pct(eps), pct(row["first_rel_rmse"]), pct(row["last_rel_rmse"]), pct(ours),
-            fmt(row["last_max_error"]), fmt(row["median_accumulating_wall_ms"] or row["median_wall_ms"], 1)))
+        weight = row["settings"]["sss.view_weight"]
+        add("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            row["settings"]["material"], weight, pct(eps), pct(row["first_rel_rmse"]), pct(row["last_rel_rmse"]),
+            pct(ours), fmt(row["last_error"].get("mean_ratio")), fmt(row["last_max_error"]),
+            fmt(row["median_accumulating_wall_ms"] or row["median_wall_ms"], 1)))
         if row["settings"]["material"] == "Marble":
-            marble = (row, eps, ours)
-        stem = row["row"]
-        copy_figure(f"{work}/materials/{stem}_equal_time.png", images, f"materials_{stem}.png")
+            marble[weight] = (row, eps, ours)
+        if weight == "2":
+            copy_figure(f"{work}/materials/{row['row']}_equal_time.png", images, f"materials_{row['row']}.png")
     add("")
-    add("Reference | our converged frame | difference, per material:")
+    add("Reference | our converged frame | difference, per material (view_weight 2):")
     add("")
     for row in mat["rows"]:
-        add("![%s](%s/materials_%s.png)" % (row["settings"]["material"], rel_images, row["row"]))
+        if row["settings"]["sss.view_weight"] == "2":
+            add("![%s](%s/materials_%s.png)" % (row["settings"]["material"], rel_images, row["row"]))
     add("")
 
     # --- Grazing incidence -------------------------------------------------------------------------
@@ -223,11 +234,13 @@ def report(work, md, images):
     settings_table(add, cand, ["sss.projected_area"])
 
     # --- Fig. 9 ----------------------------------------------------------------------------------
-    sc = load(f"{work}/scales/bench.json")
+    scale_runs = [(scale, load(f"{work}/scale_{scale}/bench.json")) for scale in SCALES]
+    sc = scale_runs[1][1]
     add("### Equal time against the reference at three scales (the paper's Fig. 9; target 3)")
     add("")
-    add("Bunny in marble at %dx%d. For each row, `tallow bench --equal-time` runs the reference with another seed"
+    add("Bunny in marble at %dx%d, the camera moved with it so that it frames it the same. For each row,"
         % (sc["width"], sc["height"]))
+    add("`tallow bench --equal-time` runs the reference with another seed")
     add("for as long as our first frame took (at least one pass, so it often runs longer) and measures it against")
     add("the converged reference like our frame. The no-cache gather (the paper's Fig. 11 variant) renders one")
     add("independent estimate per frame.")
@@ -235,28 +248,31 @@ def report(work, md, images):
     add("| scale [m] | method | first frame [ms] | first frame rel. RMSE | reference at equal time: [ms], passes, rel. RMSE | converged rel. RMSE | reference ε |")
     add("|---|---|---:|---:|---:|---:|---:|")
     equal = {}
-    for row in sc["rows"]:
-        eps = reference_error(sc, row)
-        add("| %s | %s | %s | %s | %s, %d, %s | %s | %s |" % (
-            row["settings"]["scale"], row["method"], fmt(row["first_wall_ms"], 1), pct(row["first_rel_rmse"]),
-            fmt(row.get("equal_time_ms"), 1), row.get("equal_time_passes", 0), pct(row.get("equal_time_rel_rmse")),
-            pct(row["last_rel_rmse"]), pct(eps)))
-        if row["method"] == "radiosity-maps":
-            equal[row["settings"]["scale"]] = row
+    for scale, b in scale_runs:
+        for row in b["rows"]:
+            eps = reference_error(b, row)
+            add("| %g | %s | %s | %s | %s, %d, %s | %s | %s |" % (
+                scale, row["method"], fmt(row["first_wall_ms"], 1), pct(row["first_rel_rmse"]),
+                fmt(row.get("equal_time_ms"), 1), row.get("equal_time_passes", 0), pct(row.get("equal_time_rel_rmse")),
+                pct(row["last_rel_rmse"]), pct(eps)))
+            if row["method"] == "radiosity-maps":
+                equal["%g" % scale] = row
     add("")
-    copy_figure(f"{work}/scales/speed_error.png", images, "scales_speed_error.png")
-    copy_figure(f"{work}/scales/convergence.png", images, "scales_convergence.png")
-    for row in sc["rows"]:
-        copy_figure(f"{work}/scales/{row['row']}_equal_time.png", images, f"scales_{row['row']}.png")
-    add("Speed against error and convergence with frames (all rows):")
+    copy_figure(f"{work}/scale_0.1/speed_error.png", images, "scales_speed_error.png")
+    copy_figure(f"{work}/scale_0.1/convergence.png", images, "scales_convergence.png")
+    for scale, b in scale_runs:
+        for row in b["rows"]:
+            copy_figure(f"{work}/scale_{scale}/{row['row']}_equal_time.png", images, f"scales_{row['row']}_{scale:g}.png")
+    add("Speed against error and convergence with frames (0.1 m):")
     add("")
     add("![speed against error](%s/scales_speed_error.png) ![convergence](%s/scales_convergence.png)" % (rel_images, rel_images))
     add("")
     add("Reference | our first frame | difference | reference at equal time, radiosity maps:")
     add("")
-    for row in sc["rows"]:
-        if row["method"] == "radiosity-maps":
-            add("![scale %s](%s/scales_%s.png)" % (row["settings"]["scale"], rel_images, row["row"]))
+    for scale, b in scale_runs:
+        for row in b["rows"]:
+            if row["method"] == "radiosity-maps":
+                add("![scale %g](%s/scales_%s_%g.png)" % (scale, rel_images, row["row"], scale))
     add("")
 
     # --- Fig. 11 ---------------------------------------------------------------------------------
@@ -319,11 +335,13 @@ def report(work, md, images):
     # --- Targets ---------------------------------------------------------------------------------
     add("### The targets, measured")
     add("")
-    if marble:
-        row, eps, ours = marble
+    if "2" in marble:
+        row, eps, ours = marble["2"]
         verdict = "met" if row["last_rel_rmse"] <= 0.05 else ("met once the reference's noise is removed" if ours is not None and ours <= 0.05 else "**not met**")
+        before = marble.get("0")
         add("1. Converged maps within 5%% relative RMSE, marble bunny 0.1 m, K = 16: **%s** (%s without the reference's"
-            " ε = %s) — %s." % (pct(row["last_rel_rmse"]), pct(ours), pct(eps), verdict))
+            " ε = %s) — %s; with the paper's equal weights %s." % (pct(row["last_rel_rmse"]), pct(ours), pct(eps), verdict,
+                                                                 pct(before[0]["last_rel_rmse"]) if before else "—"))
     s_rows = {(r["settings"]["sss.projected_area"], r["settings"]["sss.texel_plane"]): r for r in slab["rows"]}
     g_rows = {(r["settings"]["sss.projected_area"], r["settings"]["sss.texel_plane"]): r for r in graz["rows"]}
     before, after = ("false", "false"), ("true", "true")
