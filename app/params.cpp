@@ -224,6 +224,63 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                true),
                    [](auto& c) -> auto& { return c.render.sss.stereographic; }));
 
+  // --- Emergent light by virtual point lights (issue 7; the paper's §3.4, docs/vpl.md) -----------
+  r.add(bind<int>(withDefault(declare("vpl.count", "int", "VPLs",
+                                      "N_vpl: virtual point lights on the translucent objects' outermost surface that "
+                                      "light the opaque receivers (Eqs. 15-16; the paper uses 50-200); 0: none. Needs "
+                                      "method radiosity-maps.", 0, sss::kMaxVpls),
+                              0),
+                  [](auto& c) -> auto& { return c.render.vpl.count; }));
+  r.add(bind<int>(withDefault(declare("vpl.cube_size", "int", "texels",
+                                      "Face of the cube map of the outermost surface from which the VPLs are read.", 8,
+                                      4096),
+                              128),
+                  [](auto& c) -> auto& { return c.render.vpl.cubeSize; }));
+  {
+    Param p = withDefault(declare("vpl.placement", "enum", "",
+                                  "Where VPLs stand: backlit (only surface facing away from every point light inside "
+                                  "the translucent objects' box: the paper's visibility approximation for a "
+                                  "surrounded source), all (the whole outermost surface), or auto (backlit when such "
+                                  "a light exists, else all)."),
+                          "auto");
+    p.choices = {"auto", "all", "backlit"};
+    p.getter = [](const Config& c) {
+      switch (c.render.vpl.placement) {
+        case sss::VplPlacement::All: return json("all");
+        case sss::VplPlacement::Backlit: return json("backlit");
+        case sss::VplPlacement::Auto: break;
+      }
+      return json("auto");
+    };
+    p.setter = [](Config& c, const json& v) {
+      const std::string m = v.get<std::string>();
+      c.render.vpl.placement = m == "all"       ? sss::VplPlacement::All
+                               : m == "backlit" ? sss::VplPlacement::Backlit
+                                                : sss::VplPlacement::Auto;
+    };
+    r.add(std::move(p));
+  }
+  {
+    Param p = withDefault(declare("vpl.area", "enum", "",
+                                  "The area A_v each VPL stands for: solid-angle (4 pi d^2 / (N_vpl cos alpha) from the "
+                                  "cube's centre: the density of the fixed directions on the surface, exact on "
+                                  "average) or bounding-box (the paper's Eq. 16: the bounding box's area / N_vpl)."),
+                          "solid-angle");
+    p.choices = {"solid-angle", "bounding-box"};
+    p.getter = [](const Config& c) {
+      return json(c.render.vpl.area == sss::VplArea::SolidAngle ? "solid-angle" : "bounding-box");
+    };
+    p.setter = [](Config& c, const json& v) {
+      c.render.vpl.area = v.get<std::string>() == "bounding-box" ? sss::VplArea::BoundingBox : sss::VplArea::SolidAngle;
+    };
+    r.add(std::move(p));
+  }
+  r.add(bind<bool>(withDefault(declare("vpl.stable", "bool", "",
+                                       "The same VPL directions every frame (the paper's remedy for flicker); off: new "
+                                       "directions every frame."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.vpl.stable; }));
+
   // --- Scene-bound: no default; the preset gives the value --------------------------------------
   {
     Param p = declare("scale", "float", "m", "Size of the first object (mesh: largest extent of its bounding box).",

@@ -1,6 +1,6 @@
 #version 450 core
-// Opaque surfaces: Lambertian reflection of every light (with shadows) and of a uniform ambient
-// sky, L = ρ/π · E + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
+// Opaque surfaces: Lambertian reflection of every light (with shadows), of the VPLs' emergent light
+// (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
 // L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1) + F_r(ω_o) · L_env(mirror direction): the
 // specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
 // when there is none (render.specular off: no reflection).
@@ -8,6 +8,7 @@
 #include "bssrdf/fresnel.glsl"
 #include "sss/algorithm1.glsl"
 #include "sss/gather.glsl"
+#include "sss/vpl_receiver.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -64,7 +65,7 @@ void main() {
     return;
   }
   if (backFacing) n = -n;
-  vec3 e = lightIrradiance(vWorldPosition, n);
+  vec3 e = lightIrradiance(vWorldPosition, n) + vplIrradiance(vWorldPosition, n);
   oRadiance = vec4(uAlbedo / PI * e + uAlbedo * uAmbient, 1.0);
   oCoverage = vec4(0.0);
 }

@@ -421,6 +421,23 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
   p.set("uTexelPlane", s.texelPlane ? 1 : 0);
 }
 
+void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings& settings, GLuint mapsUnit,
+                                          GLuint depthUnit) const {
+  constexpr GLuint kMapViewsBinding = 5;  // shaders/sss/algorithm1.glsl
+  // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
+  const float radius = sphere_.radius;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, cameraViews_.id());
+  p.set("uMapCount", static_cast<int>(views_.size()));
+  p.set("uMapFrames", frames_);
+  p.set("uEpsBias", settings.sss.bias * radius);
+  p.set("uEpsComb", settings.sss.comb * radius);
+  p.set("uViewWeight", settings.sss.viewWeight);
+  p.set("uMaps", static_cast<int>(mapsUnit));
+  p.set("uMapDepth", static_cast<int>(depthUnit));
+  maps_.bind(mapsUnit);
+  mapDepth_.bind(depthUnit);
+}
+
 void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
   const SssSettings& s = settings.sss;
   const int k = mapCount(scene, settings), size = s.mapSize;

@@ -110,6 +110,11 @@ class RadiosityMaps {
   /// the camera pass of the no-cache method.
   void setGatherUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings, GLuint firstUnit,
                          int frame) const;
+  /// Everything shaders/sss/algorithm1.glsl reads (the K views on its storage binding, K, F, ε_bias,
+  /// ε_comb, the view weight; the maps and their depth on texture units mapsUnit and depthUnit),
+  /// for a program that includes it: the camera pass and the VPL pass.
+  void setAlgorithm1Uniforms(gpu::Program& program, const RenderSettings& settings, GLuint mapsUnit,
+                             GLuint depthUnit) const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
   const std::vector<int>& slots() const { return slots_; }
   /// The directional light G-buffers (tests): normals, and per directional light (scene order of

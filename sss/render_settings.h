@@ -32,6 +32,32 @@ struct SssSettings {
   bool texelPlane = true;     ///< sss.texel_plane: x_i on the light G-buffer texel's tangent plane (false: its depth)
 };
 
+/// Where the virtual point lights stand (vpl.placement).
+enum class VplPlacement {
+  Auto,     ///< backlit when a point light is surrounded (inside the translucent objects' bounds), else all
+  All,      ///< every VPL the outermost-surface cube map gives
+  Backlit,  ///< only VPLs facing away from every surrounded point light (the paper's §3.4)
+};
+
+/// How much surface each VPL stands for (vpl.area).
+enum class VplArea {
+  SolidAngle,   ///< A_v = 4π d_v² / (N_vpl cos α_v): the cube map's sampling density, exact on average
+  BoundingBox,  ///< A_v = A_box / N_vpl: the paper's Eq. 16 with the bounding box's area
+};
+
+/// Upper bound of vpl.count (the parameter's range; the receiver loop's cost grows with it).
+inline constexpr int kMaxVpls = 4096;
+
+/// Transport of emergent light by virtual point lights (the paper's §3.4, Eqs. 15–16; vpl.*).
+struct VplSettings {
+  int count = 0;                 ///< vpl.count: N_vpl; 0 = no VPLs
+  int cubeSize = 128;            ///< vpl.cube_size [texels]: face of the outermost-surface cube map
+  VplPlacement placement = VplPlacement::Auto;  ///< vpl.placement
+  VplArea area = VplArea::SolidAngle;           ///< vpl.area
+  bool stable = true;            ///< vpl.stable: the same directions every frame (false: new ones each frame)
+  bool shadows = false;          ///< vpl.shadows: receivers' visibility of the VPLs
+};
+
 struct RenderSettings {
   int width = 0;              ///< render.width [px]
   int height = 0;             ///< render.height [px]
@@ -43,6 +69,7 @@ struct RenderSettings {
   bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;
+  VplSettings vpl;
 };
 
 }  // namespace tallow::sss

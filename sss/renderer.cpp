@@ -32,6 +32,7 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
   if (6 * pointCount > maxLayers)
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
   RadiosityMaps::checkLimits(scene, settings);
+  VirtualPointLights::checkLimits(scene, settings);
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
@@ -78,6 +79,8 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
                                       " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
                                       " dipole), accumulated until " + std::to_string(s.frames) + " frames"});
   }
+  if (VirtualPointLights::applies(scene, settings))
+    passes.push_back({"vpl", VirtualPointLights::describe(scene, settings)});
   passes.push_back({"surface", std::to_string(scene.objects.size()) + " object(s): " +
                                    (maps      ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
                                                 "ones Lambertian"
@@ -104,12 +107,25 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
   // Converged: nothing the maps depend on changed and F reached sss.frames; only step 3 runs.
   if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapStateKey, settings))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sss.", 0) == 0; });
+  // The VPLs read the maps and the geometry: nothing to redo while both hold, unless the directions
+  // change every frame.
+  if (vpls_ && vpls_->count() == settings.vpl.count && settings.vpl.stable && fields_ &&
+      !fields_->stale(timeS, settings.fieldRes) && maps_ && !maps_->needsUpdate(mapStateKey, settings) &&
+      vplKey_ == vplKey(settings, mapStateKey))
+    std::erase_if(passes, [](const PlannedPass& p) { return p.name == "vpl"; });
   return passes;
 }
 
 std::string Renderer::mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
   return RadiosityMaps::stateKey(scene, settings, fields_->animated() ? timeS : 0.0) + "|restart " +
          std::to_string(accumulation_);
+}
+
+std::string Renderer::vplKey(const RenderSettings& settings, const std::string& mapStateKey) {
+  const VplSettings& v = settings.vpl;
+  return mapStateKey + "|vpl " + std::to_string(v.count) + ',' + std::to_string(v.cubeSize) + ',' +
+         std::to_string(static_cast<int>(v.placement)) + ',' + std::to_string(static_cast<int>(v.area)) + ',' +
+         std::to_string(v.stable);
 }
 
 void Renderer::restartAccumulation() {
@@ -160,6 +176,10 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       maps_->renderLightGBuffers(scene, settings, geometry_, key);
     } else if (pass.name == "sss.maps") {
       maps_->renderMaps(scene, settings, geometry_);
+    } else if (pass.name == "vpl") {
+      if (!vpls_) vpls_ = std::make_unique<VirtualPointLights>(shaders_);
+      vpls_->render(scene, settings, geometry_, *maps_, vplFrame_++);
+      vplKey_ = vplKey(settings, key);
     } else if (pass.name == "surface") {
       const glm::vec4 clear(scene.background, 1.0f);
       glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &clear.x);
@@ -174,7 +194,8 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
           maps_ && settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings)
               ? maps_.get()
               : nullptr;
-      surface_.render(scene, settings, geometry_, camera, shadows_, maps, noCache, noCacheFrame_++, target_,
+      const VirtualPointLights* vpls = vpls_ && VirtualPointLights::applies(scene, settings) ? vpls_.get() : nullptr;
+      surface_.render(scene, settings, geometry_, camera, shadows_, maps, noCache, vpls, noCacheFrame_++, target_,
                       settings.width, settings.height);
     }
   }
@@ -203,7 +224,7 @@ MapCoverage Renderer::mapCoverage() const {
 
 std::size_t Renderer::gpuBytes() const {
   return radiance_.bytes() + coverage_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
-         (maps_ ? maps_->bytes() : 0);
+         (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0);
 }
 
 }  // namespace tallow::sss

@@ -18,6 +18,7 @@
 #include "sss/scene_geometry.h"
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
+#include "sss/virtual_point_lights.h"
 
 namespace tallow::sss {
 
@@ -69,6 +70,9 @@ class Renderer {
   std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers, maps
   /// The radiosity maps, once a frame has used them (null before, or with another method).
   const RadiosityMaps* radiosityMaps() const { return maps_.get(); }
+  const SceneGeometry& geometry() const { return geometry_; }
+  /// The VPLs of the last frame that had them (null before, or when the scene needs none).
+  const VirtualPointLights* virtualPointLights() const { return vpls_.get(); }
   /// Forgets what the progressive methods have accumulated, keeping every allocation: the next
   /// frame restarts the radiosity maps (as a change of their state key does) and the no-cache
   /// seeds. For `tallow bench`, which times the frames after a warm-up frame.
@@ -82,10 +86,16 @@ class Renderer {
   std::vector<PlannedPass> planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
                                      const std::string& mapStateKey) const;
 
+  /// What the VPLs depend on beyond the maps (vpl.* settings), with the maps' state key.
+  static std::string vplKey(const RenderSettings& settings, const std::string& mapStateKey);
+
   SceneGeometry geometry_;
   std::unique_ptr<FieldObjects> fields_;
   const gpu::ShaderLibrary& shaders_;
   std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
+  std::unique_ptr<VirtualPointLights> vpls_;  ///< created on the first frame that needs them
+  std::string vplKey_;                   ///< vplKey() of the last VPL pass
+  int vplFrame_ = 0;                     ///< frames with VPLs: seeds the directions when not stable
   int noCacheFrame_ = 0;                 ///< seeds of the no-cache gather, one estimate per frame
   int accumulation_ = 0;                 ///< restartAccumulation() calls: part of the maps' state key
   ShadowPass shadows_;

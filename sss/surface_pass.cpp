@@ -13,7 +13,6 @@ constexpr GLuint kMapsUnit = 2;
 constexpr GLuint kMapDepthUnit = 3;
 constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
-constexpr GLuint kMapViewsBinding = 5;  // shaders/sss/algorithm1.glsl
 
 }  // namespace
 
@@ -33,7 +32,7 @@ void SurfacePass::setEnvironment(const Environment& environment) {
 
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                          const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-                         const RadiosityMaps* noCache, int frame, const gpu::Framebuffer& target, int width,
+                         const RadiosityMaps* noCache, const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width,
                          int height) {
   // Lights into the shader's arrays.
   std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
@@ -101,22 +100,14 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
   p.set("uSssPointGPosition", static_cast<int>(kGatherFirstUnit + 2));
   p.set("uSssPointGNormal", static_cast<int>(kGatherFirstUnit + 3));
   if (noCache) noCache->setGatherUniforms(p, scene, settings, kGatherFirstUnit, frame);
-  p.set("uMaps", static_cast<int>(kMapsUnit));
-  p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
   if (maps) {
-    // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
-    const float radius = maps->sphere().radius;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, maps->cameraViews().id());
-    p.set("uMapCount", static_cast<int>(maps->views().size()));
-    p.set("uMapFrames", maps->frames());
-    p.set("uEpsBias", settings.sss.bias * radius);
-    p.set("uEpsComb", settings.sss.comb * radius);
-    p.set("uViewWeight", settings.sss.viewWeight);
-    maps->maps().bind(kMapsUnit);
-    maps->mapDepth().bind(kMapDepthUnit);
+    maps->setAlgorithm1Uniforms(p, settings, kMapsUnit, kMapDepthUnit);
   } else {
+    p.set("uMaps", static_cast<int>(kMapsUnit));
+    p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
     p.set("uMapCount", 0);
   }
+  VirtualPointLights::setReceiverUniforms(p, vpls);
 
   target.bind();
   glViewport(0, 0, width, height);

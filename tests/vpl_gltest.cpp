@@ -1,0 +1,283 @@
+// Virtual point lights (issue 7, point 5): the areas they stand for, their total flux against a
+// dense estimate, one VPL's irradiance on a receiver against the disc formula computed here, a
+// receiver that sees the light only through the VPLs, the backlit placement, and finiteness.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "gpu/image_error.h"
+#include "sss/bssrdf.h"
+#include "sss/reference_integrator.h"
+#include "sss/virtual_point_lights.h"
+#include "support/render_support.h"
+#include "support/temp_dir.h"
+
+namespace tallow {
+namespace {
+
+using test::PresetSession;
+constexpr double kPi = 3.14159265358979323846;
+
+/// A marble cube of edge `edge` whose centre is `lift` above a grey floor, lit by a directional
+/// light from `toLight`; an orthographic camera straight down showing `view` metres square.
+nlohmann::json cubeScene(double edge, double lift, const std::vector<double>& toLight, double view) {
+  return {{"name", "vpl-cube"},
+          {"description", "a marble cube above a floor, seen from above"},
+          {"camera",
+           {{"type", "orthographic"}, {"position", {0, 1, 0}}, {"target", {0, 0, 0}}, {"up", {0, 0, -1}},
+            {"height", view}}},
+          {"lights", {{{"type", "directional"}, {"direction", toLight}, {"irradiance", {1, 1, 1}}, {"shadows", true}}}},
+          {"objects",
+           {{{"name", "cube"}, {"shape", "box"}, {"size", {1, 1, 1}}, {"scale", edge}, {"material", "Marble"},
+             {"albedo", {0.8, 0.8, 0.8}}, {"position", {0, lift, 0}}},
+            {{"name", "floor"}, {"shape", "plane"}, {"size", {1, 1}}, {"albedo", {0.5, 0.5, 0.5}}, {"position", {0, 0, 0}}}}},
+          {"ambient", {0, 0, 0}},
+          {"background", {0, 0, 0}},
+          {"animation", {{"duration_s", 0}, {"loop", true}}}};
+}
+
+std::string write(const test::TempDir& dir, const std::string& name, const nlohmann::json& preset) {
+  const auto path = dir.path() / (name + ".json");
+  std::ofstream(path) << preset.dump(2);
+  return path.string();
+}
+
+const std::vector<std::string> kCheapMaps = {"sss.maps=6", "sss.samples=4", "sss.map_size=64", "sss.light_map_size=128",
+                                             "sss.frames=1"};
+
+std::vector<std::string> with(std::vector<std::string> sets, const std::vector<std::string>& more) {
+  sets.insert(sets.end(), more.begin(), more.end());
+  return sets;
+}
+
+TEST(Vpl, SolidAngleAreasAddUpToTheSurfaceArea) {
+  // Directions uniform on the sphere around the box centre c meet the surface with density
+  // cos α / (4π d² N) per unit area, so A_v = 4π d² / (N cos α) adds up to the surface's area: 6a²
+  // for a cube (cos α ≥ 1/√3 there, above the shader's cap of 0.1).
+  test::TempDir dir;
+  const double a = 0.04;
+  const std::string preset = write(dir, "cube", cubeScene(a, 0.05, {0.3, 1, 0.2}, 0.2));
+  PresetSession s(preset, with(kCheapMaps, {"render.width=16", "render.height=16", "vpl.count=4096",
+                                            "vpl.placement=all", "vpl.cube_size=256"}));
+  s.render();
+  const sss::VirtualPointLights* vpls = s.renderer().virtualPointLights();
+  ASSERT_NE(vpls, nullptr);
+  const std::vector<sss::VplRecord> records = vpls->read();
+  ASSERT_EQ(records.size(), 4096u);
+  const glm::vec3 c = vpls->centre();
+  EXPECT_NEAR(c.y, 0.05, 1e-6);
+  double area = 0.0;
+  for (const sss::VplRecord& r : records) {
+    ASSERT_GT(r.position.w, 0.0f) << "every direction meets the closed cube";
+    area += r.normal.w;
+    const glm::vec3 d = glm::vec3(r.position) - c;
+    const float face = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    EXPECT_NEAR(face, a / 2, a / 200) << "on the cube's surface";
+    const glm::vec3 n(r.normal);
+    EXPECT_GT(std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)}), 0.999f) << "a face normal";
+    EXPECT_GT(glm::dot(n, d), 0.0f) << "pointing outward";
+  }
+  std::printf("[ vpl ] sum of A_v = %.6g m^2, 6a^2 = %.6g m^2 (ratio %.5f)\n", area, 6 * a * a, area / (6 * a * a));
+  EXPECT_NEAR(area / (6 * a * a), 1.0, 0.01);
+
+  // The paper's Eq. 16 weight: A_box / N each.
+  s.settings().vpl.area = sss::VplArea::BoundingBox;
+  s.render();
+  for (const sss::VplRecord& r : s.renderer().virtualPointLights()->read())
+    EXPECT_NEAR(r.normal.w, 6 * a * a / 4096, 1e-4 * 6 * a * a / 4096);
+}
+
+TEST(Vpl, FluxMatchesADenseEstimateWithinSamplingError) {
+  // Φ = Σ_v B(x_v) A_v estimates ∫ B dA over the outermost surface. With N = 4096 directions the
+  // estimate is dense; each direction alone gives Y_v = N B_v A_v, whose spread over the dense
+  // set bounds the error of an N = 80 estimate (σ = sd(Y)/√80; Halton directions do better).
+  test::TempDir dir;
+  const std::string preset = write(dir, "cube", cubeScene(0.04, 0.05, {0.5, 0.8, 0.3}, 0.2));
+  const auto flux = [&](int n, std::vector<double>* perDirection) {
+    PresetSession s(preset, with(kCheapMaps, {"render.width=16", "render.height=16", "vpl.count=" + std::to_string(n),
+                                              "vpl.placement=all", "sss.frames=1", "sss.samples=16"}));
+    s.render();
+    glm::dvec3 sum(0.0);
+    for (const sss::VplRecord& r : s.renderer().virtualPointLights()->read()) {
+      const glm::dvec3 b = kPi * glm::dvec3(glm::vec3(r.radiance));  // B = π (B/π)
+      sum += b * static_cast<double>(r.normal.w);
+      if (perDirection) perDirection->push_back(n * (b.x + b.y + b.z) * r.normal.w);
+    }
+    return sum;
+  };
+  std::vector<double> y;
+  const glm::dvec3 dense = flux(4096, &y);
+  const glm::dvec3 sparse = flux(80, nullptr);
+  double mean = 0.0, var = 0.0;
+  for (double v : y) mean += v / y.size();
+  for (double v : y) var += (v - mean) * (v - mean) / (y.size() - 1);
+  const double sigma = std::sqrt(var / 80.0);
+  const double denseTotal = dense.x + dense.y + dense.z, sparseTotal = sparse.x + sparse.y + sparse.z;
+  std::printf("[ vpl ] flux, all bands: N=80 %.6g W, N=4096 %.6g W, sampling error of N=80 %.3g W (%.1f%%)\n",
+              sparseTotal, denseTotal, sigma, 100 * sigma / denseTotal);
+  ASSERT_GT(denseTotal, 0.0);
+  EXPECT_LT(sigma / denseTotal, 0.25) << "the bound below would say nothing";
+  EXPECT_LE(std::abs(sparseTotal - denseTotal), 3.0 * sigma);
+  // And the dense mean of Y is the dense flux itself (the same numbers, a consistency check).
+  EXPECT_NEAR(mean / denseTotal, 1.0, 1e-3);
+}
+
+TEST(Vpl, OneVplsIrradianceOnTheFloorMatchesTheDiscFormula) {
+  // The floor's radiance with VPLs minus without is ρ/π Σ_v F_t(cos θ_v) (B_v/π) A_v cos θ_v cos θ_r
+  // / (d² + A_v/π), each term the on-axis irradiance of a Lambertian disc of area A_v (no VPL
+  // shadows). Evaluated here from the VPL records at every floor pixel's world position.
+  test::TempDir dir;
+  const double view = 0.2, a = 0.04;
+  const std::string preset = write(dir, "cube", cubeScene(a, 0.03, {0.4, 0.8, 0.2}, view));
+  const int w = 40, h = 40;
+  const std::vector<std::string> base = with(kCheapMaps, {"render.width=40", "render.height=40", "vpl.placement=all"});
+  PresetSession off(preset, with(base, {"vpl.count=0"}));
+  PresetSession on(preset, with(base, {"vpl.count=3"}));
+  const gpu::Image without = off.render(), withVpls = on.render();
+  const std::vector<sss::VplRecord> records = on.renderer().virtualPointLights()->read();
+  int compared = 0, lit = 0;
+  double worst = 0.0;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const double x = ((i + 0.5) / w - 0.5) * view, z = ((j + 0.5) / h - 0.5) * view;
+      if (std::abs(x) < a / 2 + view / w && std::abs(z) < a / 2 + view / h) continue;  // under the cube
+      const glm::dvec3 p(x, 0.0, z), n(0, 1, 0);
+      glm::dvec3 e(0.0);
+      for (const sss::VplRecord& r : records) {
+        if (r.position.w <= 0.0f) continue;
+        const glm::dvec3 toP = p - glm::dvec3(glm::vec3(r.position));
+        const double d2 = glm::dot(toP, toP);
+        const glm::dvec3 u = toP / std::sqrt(d2);
+        const double cosV = glm::dot(glm::dvec3(glm::vec3(r.normal)), u), cosR = -glm::dot(n, u);
+        if (cosV <= 0 || cosR <= 0) continue;
+        const double area = r.normal.w;
+        e += sss::fresnelTransmittance(cosV, r.position.w) * glm::dvec3(glm::vec3(r.radiance)) * area * cosV * cosR /
+             (d2 + area / kPi);
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double expected = 0.5 / kPi * e[c];
+        const double measured = withVpls.at(i, j)[c] - without.at(i, j)[c];
+        if (expected > 0) ++lit;
+        worst = std::max(worst, std::abs(measured - expected) / std::max(expected, 1e-9));
+        EXPECT_NEAR(measured, expected, 5e-3 * expected + 1e-9) << "pixel " << i << "," << j << " band " << c;
+        ++compared;
+      }
+    }
+  std::printf("[ vpl ] %d floor values, %d lit by the VPLs, worst relative difference %.2g\n", compared, lit, worst);
+  EXPECT_GT(lit, compared / 4) << "the VPLs must light a good part of the floor for this to test anything";
+}
+
+/// presets/candle-holder.json without its directional fill: the point light inside the cup is
+/// the only light, and the table cannot see it.
+std::string hiddenLightPreset(const test::TempDir& dir) {
+  std::ifstream in(std::string(TALLOW_TEST_SOURCE_DIR) + "/presets/candle-holder.json");
+  nlohmann::json p = nlohmann::json::parse(in);
+  p["lights"] = nlohmann::json::array({p["lights"][0]});
+  p["ambient"] = {0, 0, 0};
+  p["background"] = {0, 0, 0};
+  return write(dir, "hidden", p);
+}
+
+bool allFinite(const gpu::Image& image) {
+  for (const glm::vec4& px : image.pixels)
+    if (!std::isfinite(px.r) || !std::isfinite(px.g) || !std::isfinite(px.b)) return false;
+  return true;
+}
+
+TEST(Vpl, AHiddenLightReachesTheTableOnlyThroughTheVpls) {
+  test::TempDir dir;
+  const std::string preset = hiddenLightPreset(dir);
+  const std::vector<std::string> base = with(kCheapMaps, {"render.width=64", "render.height=48"});
+  PresetSession off(preset, with(base, {"vpl.count=0"}));
+  PresetSession on(preset, with(base, {"vpl.count=80"}));
+  const gpu::Image dark = off.render(), lit = on.render();
+  ASSERT_TRUE(allFinite(dark));
+  ASSERT_TRUE(allFinite(lit));
+  // The bottom rows show only the table in front of the holder (presets/candle-holder.json's camera).
+  double darkMax = 0.0, litSum = 0.0;
+  int litPixels = 0;
+  for (int j = 40; j < 48; ++j)
+    for (int i = 0; i < 64; ++i) {
+      darkMax = std::max(darkMax, static_cast<double>(dark.at(i, j).r));
+      litSum += lit.at(i, j).r;
+      litPixels += lit.at(i, j).r > 0.0f ? 1 : 0;
+    }
+  std::printf("[ vpl ] table in front: max without VPLs %.3g, mean with %.3g, %d of %d pixels lit\n", darkMax,
+              litSum / (8 * 64), litPixels, 8 * 64);
+  EXPECT_EQ(darkMax, 0.0) << "the table sees the flame directly: the scene does not test what it should";
+  EXPECT_GT(litPixels, 8 * 64 * 9 / 10);
+  // The light is surrounded, so placement auto puts VPLs on backlit surface only.
+  const sss::VirtualPointLights* vpls = on.renderer().virtualPointLights();
+  const glm::vec3 flame = on.scene().lights[0].position;
+  int active = 0;
+  for (const sss::VplRecord& r : vpls->read()) {
+    if (r.position.w <= 0.0f) continue;
+    ++active;
+    EXPECT_LE(glm::dot(glm::vec3(r.normal), flame - glm::vec3(r.position)), 0.0f) << "a VPL on lit surface";
+    EXPECT_TRUE(std::isfinite(r.radiance.r) && std::isfinite(r.normal.w));
+  }
+  EXPECT_GT(active, 40);
+  EXPECT_EQ(sss::VirtualPointLights::placement(on.scene(), on.settings(), on.renderer().geometry()),
+            sss::VplPlacement::Backlit);
+}
+
+TEST(Vpl, ConvergedFramesSkipThePassAndNothingTurnsNan) {
+  // Hard cases for finiteness: the most VPLs the registry allows, a tiny cube and a huge one.
+  test::TempDir dir;
+  for (const double edge : {1e-4, 40.0}) {
+    const std::string preset = write(dir, "cube", cubeScene(edge, edge, {0.0, 1.0, 0.0}, 4 * edge));
+    PresetSession s(preset, with(kCheapMaps, {"render.width=24", "render.height=24", "vpl.count=4096", "sss.frames=1"}));
+    ASSERT_TRUE(allFinite(s.render())) << "edge " << edge;
+    for (const sss::VplRecord& r : s.renderer().virtualPointLights()->read())
+      ASSERT_TRUE(std::isfinite(r.radiance.r) && std::isfinite(r.normal.w) && std::isfinite(r.position.x));
+    // Maps converged and VPLs stable: the second frame runs neither.
+    for (const sss::PlannedPass& p : s.renderer().planFrame(s.scene(), s.settings(), 0.0)) EXPECT_NE(p.name, "vpl");
+    s.settings().vpl.stable = false;
+    bool planned = false;
+    for (const sss::PlannedPass& p : s.renderer().planFrame(s.scene(), s.settings(), 0.0)) planned |= p.name == "vpl";
+    EXPECT_TRUE(planned) << "new directions every frame need the pass every frame";
+  }
+}
+
+TEST(Vpl, TheTableAgainstTheReferencesEmergentLight) {
+  // presets/candle-holder.json: the receivers' emergent term of `tallow reference --emergent` (one
+  // bounce of the light leaving the holder, with visibility) against the GPU's VPL term (the frame
+  // with VPLs minus the frame without), over the receiver pixels, for N_vpl = 50, 80, 200.
+  const std::vector<std::string> base = {"render.width=64", "render.height=48", "sss.map_size=256", "sss.frames=64"};
+  PresetSession off("candle-holder", with(base, {"vpl.count=0"}));
+  gpu::Image without;
+  for (int f = 0; f < 4; ++f) without = off.render();
+  sss::ReferenceSettings rs;
+  rs.maxPasses = 32;
+  rs.emergentLight = true;
+  rs.emitterPoints = 2048;
+  const sss::ReferenceResult ref = sss::renderReference(off.scene(), off.settings(), rs);
+  ASSERT_GT(ref.emergentPixels, 1000);
+  std::printf("[ vpl ] reference emergent term: %d receiver pixels, its own relative standard error %.2f%%\n",
+              ref.emergentPixels, 100 * ref.emergentRelError);
+  std::vector<double> errors;
+  for (const int n : {50, 80, 200}) {
+    PresetSession on("candle-holder", with(base, {"vpl.count=" + std::to_string(n)}));
+    gpu::Image vpl;
+    for (int f = 0; f < 4; ++f) vpl = on.render();
+    ASSERT_TRUE(allFinite(vpl));
+    for (std::size_t i = 0; i < vpl.pixels.size(); ++i)
+      vpl.pixels[i] = glm::vec4(glm::vec3(vpl.pixels[i] - without.pixels[i]), 1.0f);
+    const gpu::ImageError e = gpu::imageError(vpl, ref.emergent, ref.emergent);
+    std::printf("[ vpl ] N_vpl = %3d: receivers' rel. RMSE %.1f%%, mean / reference %.3f (%zu pixels)\n", n,
+                100 * e.relRmse, e.meanRatio, e.pixels);
+    // The mean: the reference's noise on it is far below its per-pixel 10%; measured within 2.5%.
+    EXPECT_NEAR(e.meanRatio, 1.0, 0.1) << "N_vpl " << n;
+    EXPECT_LT(e.relRmse, 0.35) << "N_vpl " << n;  // measured 29%, 23%, 17% with the reference's ε inside
+    errors.push_back(e.relRmse);
+  }
+  EXPECT_LT(errors.back(), errors.front()) << "more VPLs, less error";
+}
+
+}  // namespace
+}  // namespace tallow
