@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -59,7 +60,8 @@ const std::vector<std::string> kMeshFieldKeys = {"type", "mesh", "melt_s"};
 constexpr Range kBlobScale{0.0, 1e3, true};      ///< metres per unscaled blob unit
 constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< seconds until the candle has burnt down
 constexpr Range kMeltDurationS{0.0, 1e6, true};    ///< seconds until a mesh field has melted
-const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta"};
+const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta", "from", "scale"};
+constexpr Range kMaterialScale{0.0, 1e6, true};  ///< multiplies σ_s and σ_a of a "from" material
 const std::vector<std::string> kAnimationKeys = {"duration_s", "loop"};
 
 /// Walks one preset document and fills a Config. Every accessor checks type and range and throws
@@ -447,13 +449,35 @@ class PresetReader {
     checkKeys(p, kMaterialKeys, "material coefficients");
     sss::Material m;
     m.name = "custom";
-    m.sigma_s = vec3(require(p, "sigma_s"), "sigma_s", kCoefficient);
-    m.sigma_a = vec3(require(p, "sigma_a"), "sigma_a", kCoefficient);
+    const bool derived = has(p, "from");
+    if (derived) {
+      // A measured material, optionally with coefficients replaced and σ_s, σ_a scaled (the
+      // radiosity-maps paper's candle: glycerine soap scaled to approximate candle wax, §4).
+      const Ptr from = p / "from";
+      if (!at(from).is_string()) doc_.fail(from, "from: expected a material name from materials.csv");
+      m = readMaterial(from);
+    } else {
+      if (has(p, "scale")) doc_.failAtKey(p / "scale", "\"scale\" applies to a material given \"from\" a measured one");
+      m.sigma_s = vec3(require(p, "sigma_s"), "sigma_s", kCoefficient);
+      m.sigma_a = vec3(require(p, "sigma_a"), "sigma_a", kCoefficient);
+      m.g = glm::vec3(0.0f);
+      m.eta = kDefaultEta;
+    }
+    if (derived && has(p, "sigma_s")) m.sigma_s = vec3(p / "sigma_s", "sigma_s", kCoefficient);
+    if (derived && has(p, "sigma_a")) m.sigma_a = vec3(p / "sigma_a", "sigma_a", kCoefficient);
     if (has(p, "g")) {
       const Ptr g = p / "g";
       m.g = at(g).is_number() ? glm::vec3(number(g, "g", kAnisotropy)) : vec3(g, "g", kAnisotropy);
     }
-    m.eta = optNumber(p, "eta", kEta).value_or(kDefaultEta);
+    if (has(p, "eta")) m.eta = number(p / "eta", "eta", kEta);
+    if (derived) {
+      const float scale = optNumber(p, "scale", kMaterialScale).value_or(1.0f);
+      m.sigma_s *= scale;
+      m.sigma_a *= scale;
+      std::ostringstream name;
+      name << m.name << " x" << scale;
+      if (scale != 1.0f) m.name = name.str();
+    }
     try {
       sss::validateMaterial(m);
     } catch (const std::invalid_argument& e) {

@@ -342,6 +342,28 @@ TEST(Preset, Materials) {
             "p.json:4:37: invalid material: eta must be a positive number (0)");
 }
 
+TEST(Preset, AMaterialFromAMeasuredOneScaled) {
+  // "from" copies a row of materials.csv; "scale" multiplies σ_s and σ_a (the mean free paths shrink
+  // by that factor, the albedo, g and η stay); keys given beside "from" replace the row's values.
+  const Config c = parse(withObject(R"({"shape": "sphere", "material": {"from": "Marble", "scale": 10}})"));
+  const sss::Material& m = c.scene.objects[0].material;
+  EXPECT_FLOAT_EQ(m.sigma_s.g, 26.2f);
+  EXPECT_FLOAT_EQ(m.sigma_a.b, 0.071f);
+  EXPECT_FLOAT_EQ(m.eta, 1.5f);
+  EXPECT_EQ(m.name, "Marble x10");
+  const Config d = parse(withObject(R"({"shape": "sphere", "material": {"from": "Ketchup", "g": 0.5, "eta": 1.4}})"));
+  EXPECT_FLOAT_EQ(d.scene.objects[0].material.sigma_s.r, 0.18f);
+  EXPECT_FLOAT_EQ(d.scene.objects[0].material.g.b, 0.5f);
+  EXPECT_FLOAT_EQ(d.scene.objects[0].material.eta, 1.4f);
+  EXPECT_EQ(d.scene.objects[0].material.name, "Ketchup");
+  EXPECT_EQ(errorOf(withObject(R"({"shape": "sphere", "material": {"from": "Marbel", "scale": 2}})")),
+            "p.json:4:46: unknown material \"Marbel\" (did you mean \"Marble\"?)");
+  EXPECT_EQ(errorOf(withObject(R"({"shape": "sphere", "material": {"from": "Marble", "scale": 0}})")).substr(0, 12),
+            "p.json:4:65:");
+  EXPECT_EQ(errorOf(withObject(R"({"shape": "sphere", "material": {"sigma_s": [1, 1, 1], "sigma_a": [0, 0, 0], "scale": 2}})")),
+            "p.json:4:82: \"scale\" applies to a material given \"from\" a measured one");
+}
+
 TEST(Preset, SettingsGoThroughTheRegistry) {
   EXPECT_EQ(errorOf(withTopLevel(R"("settings": {"render.width": 0})")),
             "p.json:3:32: render.width: 0 is out of range [1, 16384]");
