@@ -71,7 +71,7 @@ int runCapture(const CaptureOptions& options) {
   for (int i = 0; i < options.frames; ++i) {
     FrameRecord frame;
     frame.index = i;
-    frame.timeS = options.timeS + i / options.fps;
+    frame.timeS = options.timeS.value_or(config.scene.startS) + i / options.fps;
     const auto start = std::chrono::steady_clock::now();
     frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
     glFinish();

@@ -2,6 +2,7 @@
 // `tallow capture`: renders frames headless and writes DIR/frame_NNNN.png (tone-mapped sRGB),
 // DIR/frame_NNNN.exr (linear) and DIR/stats.json. Nothing is written unless every frame rendered;
 // each file is written whole or not at all.
+#include <optional>
 #include <string>
 
 #include "app/setup.h"
@@ -13,7 +14,7 @@ struct CaptureOptions {
   std::string gl = "osmesa";
   std::string outDir;
   int frames = 1;
-  double timeS = 0.0;
+  std::optional<double> timeS;  ///< animation time of the first frame; unset: the preset's start_s
   double fps = 30.0;
   bool exrFloat = false;  ///< 32-bit float EXR channels instead of half
 };

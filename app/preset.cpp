@@ -62,7 +62,7 @@ constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< seconds until the candle
 constexpr Range kMeltDurationS{0.0, 1e6, true};    ///< seconds until a mesh field has melted
 const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta", "from", "scale"};
 constexpr Range kMaterialScale{0.0, 1e6, true};  ///< multiplies σ_s and σ_a of a "from" material
-const std::vector<std::string> kAnimationKeys = {"duration_s", "loop"};
+const std::vector<std::string> kAnimationKeys = {"duration_s", "loop", "start_s"};
 
 /// Walks one preset document and fills a Config. Every accessor checks type and range and throws
 /// InputError located at the offending value (or key, for unknown keys).
@@ -109,6 +109,7 @@ class PresetReader {
       checkKeys(animation, kAnimationKeys, "animation");
       scene.durationS = optNumber(animation, "duration_s", kDurationS).value_or(0.0f);
       scene.loop = optBool(animation, "loop").value_or(true);
+      scene.startS = optNumber(animation, "start_s", kDurationS).value_or(0.0f);
     }
     if (has(root, "settings")) applySettings(root / "settings", config);
     return config;

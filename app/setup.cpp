@@ -10,7 +10,7 @@
 
 namespace tallow::app {
 
-std::string defaultPresetName() { return "bunny"; }
+std::string defaultPresetName() { return "candle"; }
 
 namespace {
 std::filesystem::path fromEnvOr(const char* variable, const char* fallback) {

@@ -48,7 +48,7 @@ int runView(const ViewOptions& options) {
     if (width == 0 || height == 0) continue;  // minimised
     config.render.width = width;
     config.render.height = height;
-    double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    double t = config.scene.startS + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double duration = config.scene.durationS;
     if (duration > 0.0) t = config.scene.loop ? std::fmod(t, duration) : std::min(t, duration);
     renderer.render(config.scene, config.render, t);

@@ -428,7 +428,6 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   const float radius = sphere_.radius;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, cameraViews_.id());
   p.set("uMapCount", static_cast<int>(views_.size()));
-  p.set("uMapFrames", frames_);
   p.set("uEpsBias", settings.sss.bias * radius);
   p.set("uEpsComb", settings.sss.comb * radius);
   p.set("uViewWeight", settings.sss.viewWeight);

@@ -99,6 +99,7 @@ struct Scene {
   glm::vec3 background{0.0f};  ///< radiance of pixels that hit nothing
   float durationS = 0.0f;      ///< animation length in seconds; 0 = static scene
   bool loop = true;
+  float startS = 0.0f;         ///< time of the first frame of `capture` and `view` unless --time is given
 };
 
 }  // namespace tallow::sss

@@ -37,10 +37,10 @@ void expectCleanFailure(const test::CommandResult& r, const std::string& expecte
   EXPECT_EQ(fileCount(out), 0) << "files were written under " << out;
 }
 
-TEST(Cli, CaptureOfTheDefaultPresetWritesPngExrAndStats) {
+TEST(Cli, CaptureOfABunnyWritesPngExrAndStats) {
   test::TempDir dir;
   const auto out = dir.path() / "capture";
-  const auto r = runTallow({"capture", "--out", out.string(), "--size", "320x180"});
+  const auto r = runTallow({"capture", "--preset", "bunny", "--out", out.string(), "--size", "320x180"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   ASSERT_TRUE(std::filesystem::exists(out / "frame_0000.png"));
   ASSERT_TRUE(std::filesystem::exists(out / "frame_0000.exr"));
@@ -239,9 +239,13 @@ TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream err(dir.path() / "err.txt");
   const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("no display; capturing bunny into out/"), std::string::npos) << text;
+  EXPECT_NE(text.find("no display; capturing candle into out/"), std::string::npos) << text;
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / "frame_0000.png"));
-  EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / "stats.json"));
+  std::ifstream in(dir.path() / "out" / "stats.json");
+  const auto stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["preset"]["name"], "candle");
+  EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("vpl")) << "the default preset lights the table with VPLs";
+  EXPECT_EQ(stats["frames"][0]["time_s"], 12.0) << "the candle's start_s";
 }
 
 }  // namespace

@@ -342,6 +342,15 @@ TEST(Preset, Materials) {
             "p.json:4:37: invalid material: eta must be a positive number (0)");
 }
 
+TEST(Preset, AnimationStartTime) {
+  EXPECT_FLOAT_EQ(parse(withObject(R"({"shape": "sphere"})", R"(, "animation": {"duration_s": 20, "start_s": 12})"))
+                      .scene.startS,
+                  12.0f);
+  EXPECT_FLOAT_EQ(parse(withObject(R"({"shape": "sphere"})")).scene.startS, 0.0f);
+  EXPECT_NE(errorOf(withObject(R"({"shape": "sphere"})", R"(, "animation": {"start_s": -1})")).find("start_s"),
+            std::string::npos);
+}
+
 TEST(Preset, AMaterialFromAMeasuredOneScaled) {
   // "from" copies a row of materials.csv; "scale" multiplies σ_s and σ_a (the mean free paths shrink
   // by that factor, the albedo, g and η stay); keys given beside "from" replace the row's values.

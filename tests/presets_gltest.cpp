@@ -17,6 +17,8 @@
 #include "gpu/image_io.h"
 #include "sss/bssrdf.h"
 #include "sss/scene_geometry.h"
+#include "sss/virtual_point_lights.h"
+#include "support/render_support.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
 
@@ -148,6 +150,44 @@ TEST(Presets, CandleHolderHasItsPointLightInsideTheCavity) {
   const glm::vec3 eye(glm::inverse(model) * glm::vec4(scene.camera.position, 1.0f));
   EXPECT_GT(std::hypot(eye.x, eye.z), outer);
   EXPECT_GT(eye.y, height);
+}
+
+TEST(Presets, CandleIsAFlameInsideWaxLightingTheTable) {
+  // Issue 7, point 3: the melting candle, its flame a point light surrounded by wax (stereographic
+  // correction on), glycerine soap scaled to approximate wax (§4), VPLs lighting the table, and no
+  // other light but a faint ambient; the default preset.
+  EXPECT_EQ(app::defaultPresetName(), "candle");
+  const std::vector<std::string> small = {"render.width=80", "render.height=60", "sss.maps=6", "sss.samples=4",
+                                          "sss.map_size=128", "sss.light_map_size=128", "field.res=48"};
+  test::PresetSession with("candle", small);
+  const sss::Scene& scene = with.scene();
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].kind, sss::LightKind::Point);
+  EXPECT_GE(scene.lights[0].follow, 0);
+  EXPECT_TRUE(with.settings().sss.stereographic);
+  EXPECT_EQ(with.settings().vpl.count, 80);
+  EXPECT_EQ(scene.objects[0].material.name, "Glycerine Soap x20");
+  EXPECT_GT(scene.startS, 0.0f) << "shown once the top has melted into a cup";
+  const gpu::Image lit = with.render(scene.startS);
+  EXPECT_EQ(sss::VirtualPointLights::placement(scene, with.settings(), with.renderer().geometry()),
+            sss::VplPlacement::Backlit) << "the flame is inside the wax's bounding box at t = start_s";
+  test::PresetSession without("candle", [&] {
+    auto s = small;
+    s.push_back("vpl.count=0");
+    return s;
+  }());
+  const gpu::Image dark = without.render(scene.startS);
+  // The table in front of the candle (the bottom rows): lit by the VPLs, far brighter than by the
+  // ambient alone.
+  double litSum = 0.0, darkSum = 0.0;
+  for (int y = 52; y < 60; ++y)
+    for (int x = 0; x < 80; ++x) {
+      ASSERT_TRUE(std::isfinite(lit.at(x, y).r));
+      litSum += lit.at(x, y).r;
+      darkSum += dark.at(x, y).r;
+    }
+  std::printf("[ presets ] candle: the table in front with VPLs %.4g, without %.4g\n", litSum, darkSum);
+  EXPECT_GT(litSum, 3.0 * darkSum);
 }
 
 }  // namespace

@@ -2,9 +2,11 @@
 // weighted by whether its camera sees x_o (a depth comparison with ε_bias, four bilinear taps
 // around the point so that texels near a map's silhouette blend), after moving x_o by ε_comb
 // toward −n_o in the part perpendicular to the map direction, and by cos^p θ (sss.view_weight;
-// p = 0 is the paper's equal weighting). B = colour / (F n).
+// p = 0 is the paper's equal weighting). Each map's texels hold Σ_F (B_N, 1): dividing a look-up by
+// its alpha gives the mean B over the frames and, at coarser mip levels, over the covered texels
+// only, so a footprint that reaches past the object's silhouette is not darkened by the empty
+// texels around it (at level 0 alpha is F, the paper's division by F).
 uniform int uMapCount;                 // K
-uniform int uMapFrames;                // F
 uniform float uEpsBias;                // ε_bias, world units
 uniform float uEpsComb;                // ε_comb, world units
 uniform float uViewWeight;             // p of the weight cos^p θ of a map seeing x_o at θ (0: the paper)
@@ -36,9 +38,11 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     // the normalisation by n keeps every point that any map sees.
     if (uViewWeight > 0.0) v *= pow(max(cosTheta, 1e-4), uViewWeight);
     if (v <= 0.0) continue;
-    colour += v * textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy).rgb;
+    vec4 m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
+    if (m.a <= 0.0) continue;
+    colour += v * m.rgb / m.a;
     n += v;
   }
   seenBy = n;
-  return n > 0.0 ? colour / (float(max(uMapFrames, 1)) * n) : vec3(0.0);
+  return n > 0.0 ? colour / n : vec3(0.0);
 }

@@ -49,8 +49,14 @@ void main() {
       // unit area, so each stands for 4π |r|² / (N cos α) of the outermost surface.
       float area = uAreaMode == 0 ? 4.0 * VPL_PI * dot(r, r) / (float(uVplCount) * max(cosAlpha, MIN_COS_ALPHA))
                                   : uBoxArea / float(uVplCount);
+      // A VPL stands for A_v of surface: read B averaged over that much, i.e. at the maps' mip level
+      // whose footprint is √A_v (Algorithm 1 takes the footprint as two tangent vectors), so that
+      // one noisy texel does not become one bright VPL.
+      vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(vec3(0.0, 1.0, 0.0), n) : cross(vec3(1.0, 0.0, 0.0), n));
+      vec3 t2 = cross(n, t1);
+      float side = sqrt(area);
       float seenBy = 0.0;
-      vec3 b = scatteredRadiosity(x, n, vec3(0.0), vec3(0.0), seenBy);  // level 0 of the maps
+      vec3 b = scatteredRadiosity(x, n, side * t1, side * t2, seenBy);
       rec.position = vec4(x, uSlotEta[slot]);
       rec.normal = vec4(n, area);
       rec.radiance = vec4(b / VPL_PI, seenBy);
