@@ -59,6 +59,7 @@ struct ReferenceGroup {
   std::vector<std::pair<std::string, std::string>> settings;
   SceneOptions scene;
   gpu::Image radiance, standardError;
+  gpu::Image emergent;  ///< --receivers: the emergent term alone, alpha 1 on receiver pixels
   std::size_t objectPixels = 0;
   json info;  ///< passes, relative error, seconds, file
   std::string file;  ///< name in DIR, when computed here
@@ -85,6 +86,8 @@ struct RowResult {
   int equalTimePasses = 0;
   double equalTimeMs = 0.0;
   gpu::Image equalTimeImage;
+  // --receivers
+  std::optional<gpu::ImageError> receiverError;
 };
 
 std::string fileStem(const std::string& text) {
@@ -133,13 +136,15 @@ gpu::Image readReferenceImage(const std::filesystem::path& file) {
   }
 }
 
-/// --reference REF.exr and REF_stderr.exr, checked against the render size.
+/// --reference REF.exr and REF_stderr.exr (with --receivers also REF_emergent.exr), checked against
+/// the render size.
 void loadGivenReference(const BenchOptions& o, int width, int height, ReferenceGroup& g) {
-  const std::filesystem::path files[2] = {o.reference, standardErrorPath(o.reference)};
+  const std::filesystem::path files[3] = {o.reference, standardErrorPath(o.reference), emergentPath(o.reference)};
   g.radiance = readReferenceImage(files[0]);
   g.standardError = readReferenceImage(files[1]);
-  for (int k = 0; k < 2; ++k) {
-    const gpu::Image& i = k == 0 ? g.radiance : g.standardError;
+  if (o.receivers) g.emergent = readReferenceImage(files[2]);
+  for (int k = 0; k < (o.receivers ? 3 : 2); ++k) {
+    const gpu::Image& i = k == 0 ? g.radiance : k == 1 ? g.standardError : g.emergent;
     if (i.width != width || i.height != height)
       throw InputError("--reference: " + files[k].string() + " is " + std::to_string(i.width) + "x" +
                        std::to_string(i.height) + " but the bench renders " + std::to_string(width) + "x" +
@@ -162,9 +167,11 @@ void computeGroupReference(const BenchOptions& o, ReferenceGroup& g) {
   r.points = o.refPoints;
   r.seed = kReferenceSeed;
   r.out = g.file;  // validateReferenceOptions wants a name; nothing is written by computeReference
+  if (o.receivers) r.emergent = sss::kDefaultEmitterPoints;
   const sss::ReferenceResult result = computeReference(r);
   g.radiance = result.radiance;
   g.standardError = result.standardError;
+  g.emergent = result.emergent;
   g.info = {{"file", g.file},
             {"passes", result.passes},
             {"points_per_pass", result.pointsPerPass},
@@ -173,11 +180,16 @@ void computeGroupReference(const BenchOptions& o, ReferenceGroup& g) {
             {"seconds", result.seconds},
             {"seed", kReferenceSeed},
             {"threads", std::thread::hardware_concurrency()}};
+  if (o.receivers)
+    g.info["emergent"] = {{"emitter_points", result.emitterPoints},
+                          {"receiver_pixels", result.emergentPixels},
+                          {"rel_error", result.emergentRelError},
+                          {"rel_error_statistic", sss::kEmergentErrorStatistic}};
 }
 
 /// Our method's frames after a warm-up frame and a restart (see docs/commands.md).
 RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibrary& shaders, int minFrames,
-                 double timeS) {
+                 double timeS, bool receivers) {
   const sss::Scene& scene = c.loaded.config.scene;
   const sss::RenderSettings& settings = c.loaded.config.render;
   sss::Renderer renderer(shaders, scene, settings);
@@ -211,6 +223,18 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
       row.lastError = e;
       row.last = std::move(image);
     }
+  }
+  if (receivers) {
+    // The VPL term alone: the same frame without VPLs (the maps stay as they are: vpl.count is not
+    // part of their state), subtracted.
+    sss::RenderSettings without = settings;
+    without.vpl.count = 0;
+    renderer.render(scene, without, timeS);
+    const gpu::Image dark = renderer.readRadiance();
+    gpu::Image term = row.last;
+    for (std::size_t i = 0; i < term.pixels.size(); ++i)
+      term.pixels[i] = glm::vec4(glm::vec3(term.pixels[i] - dark.pixels[i]), 1.0f);
+    row.receiverError = gpu::imageError(term, ref.emergent, ref.emergent);
   }
   row.convergedFrames = static_cast<int>(row.convergedMs.size());
   row.gpuBytes = renderer.gpuBytes();
@@ -318,7 +342,7 @@ Sweep parseSweep(const std::string& text) {
   if (s.values.empty() || std::any_of(s.values.begin(), s.values.end(), [](const std::string& x) { return x.empty(); }))
     throw InputError("--sweep: " + s.key + ": give one or more values, separated by commas");
   if (s.key == "method") throw InputError("--sweep: method: list the methods with --methods");
-  s.knob = s.key.rfind("sss.", 0) == 0 && s.key != "sss.model";
+  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0;
   return s;
 }
 
@@ -399,6 +423,8 @@ int runBench(const BenchOptions& o) {
       computeGroupReference(o, g);
     }
     g.objectPixels = gpu::objectPixels(g.standardError);
+    if (o.receivers && (g.emergent.pixels.empty() || gpu::objectPixels(g.emergent) == 0))
+      throw InputError("bench: --receivers: the reference has no receiver pixel (no opaque surface in view)");
     if (g.objectPixels == 0)
       throw InputError("bench: the reference has no object pixel (no translucent object in view), so there is "
                        "nothing to compare");
@@ -417,7 +443,7 @@ int runBench(const BenchOptions& o) {
     if (o.scene.explain)
       for (const auto& p : sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render))
         std::printf("%s: pass %-20s %s\n", c.name.c_str(), p.name.c_str(), p.reason.c_str());
-    RowResult row = runRow(c, ref, shaders, o.frames, o.timeS);
+    RowResult row = runRow(c, ref, shaders, o.frames, o.timeS, o.receivers);
     if (o.equalTime) {
       LoadedScene truth = loadScene(ref.scene);
       runEqualTime(truth, ref, o, row);
@@ -508,6 +534,7 @@ int runBench(const BenchOptions& o) {
     values["first_error"] = errorJson(row.firstError);
     values["last_error"] = errorJson(row.lastError);
     if (row.equalTimeError) values["equal_time_error"] = errorJson(*row.equalTimeError);
+    if (row.receiverError) values["receiver_error"] = errorJson(*row.receiverError);
     values["parameters"] = registry.snapshot(c.loaded.config);
     jsonRows.push_back(values);
     jsonConvergence.push_back({{"row", c.name}, {"frames", convergence}});
@@ -533,6 +560,7 @@ int runBench(const BenchOptions& o) {
       {"methods", methods},
       {"min_frames", o.frames},
       {"equal_time", o.equalTime},
+      {"receivers", o.receivers},
       {"gpu",
        {{"backend", std::string(gpu::glBackendName(context->backend()))},
         {"GL_RENDERER", context->info().renderer},

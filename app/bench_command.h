@@ -28,13 +28,17 @@ struct BenchOptions {
   int refSpp = kNotGiven;            ///< --ref-spp
   int refPoints = 0;                 ///< --ref-points (0: automatic)
   bool equalTime = false;            ///< also run the reference for each row's first-frame time
+  /// --receivers: the reference also integrates the emergent light onto the opaque receivers
+  /// (`tallow reference --emergent`), and each row compares its VPL term (the last frame minus the
+  /// same frame with vpl.count = 0) with it over the receiver pixels (issue 7).
+  bool receivers = false;
 };
 
 /// A parsed --sweep.
 struct Sweep {
   std::string key;
   std::vector<std::string> values;
-  /// A method knob (`sss.*` other than `sss.model`): the ground truth does not depend on it, so
+  /// A method knob (`sss.*` other than `sss.model`, `vpl.*`): the ground truth does not depend on it, so
   /// its values share one reference. Any other key changes the picture the methods approximate.
   bool knob = false;
 };

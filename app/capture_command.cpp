@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -10,7 +11,9 @@
 #include "app/input_error.h"
 #include "app/params.h"
 #include "gpu/atomic_file.h"
+#include "gpu/image_error.h"
 #include "gpu/image_io.h"
+#include "sss/field_source.h"
 #include "sss/renderer.h"
 
 namespace tallow::app {
@@ -74,9 +77,17 @@ int runCapture(const CaptureOptions& options) {
     frame.timeS = options.timeS.value_or(config.scene.startS) + i / options.fps;
     const auto start = std::chrono::steady_clock::now();
     frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+    for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
+      if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
     glFinish();
     frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     images.push_back(renderer.readRadiance());
+    if (i > 0) {
+      // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
+      const std::vector<std::uint8_t> receivers = renderer.receiverMask();
+      if (std::any_of(receivers.begin(), receivers.end(), [](std::uint8_t m) { return m != 0; }))
+        frame.receiverChange = gpu::relativeChange(images[images.size() - 1], images[images.size() - 2], receivers);
+    }
     run.frames.push_back(std::move(frame));
   }
   run.gpuBytes = renderer.gpuBytes();

@@ -1,7 +1,9 @@
 #include "app/frame_stats.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <numeric>
 
 namespace tallow::app {
 
@@ -17,7 +19,7 @@ nlohmann::json toJson(const RunRecord& run) {
   json frames = json::array();
   std::vector<double> wall;
   std::map<std::string, std::vector<double>> perPass;
-  std::vector<double> gpuTotal;
+  std::vector<double> gpuTotal, changes;
   for (const FrameRecord& f : run.frames) {
     json passes = json::object();
     for (const auto& p : f.gpu.passes) {
@@ -25,7 +27,14 @@ nlohmann::json toJson(const RunRecord& run) {
       perPass[p.name].push_back(p.gpuMs);
     }
     frames.push_back({{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
-                      {"gpu_ms", passes}, {"gpu_total_ms", f.gpu.gpuTotalMs}});
+                      {"gpu_ms", passes}, {"gpu_total_ms", f.gpu.gpuTotalMs},
+                      {"receiver_change", std::isfinite(f.receiverChange) ? json(f.receiverChange) : json(nullptr)},
+                      {"point_lights", [&] {
+                         json lights = json::array();
+                         for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
+                         return lights;
+                       }()}});
+    if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
     wall.push_back(f.wallMs);
     gpuTotal.push_back(f.gpu.gpuTotalMs);
   }
@@ -51,7 +60,9 @@ nlohmann::json toJson(const RunRecord& run) {
        {{"frames", run.frames.size()},
         {"wall_ms_median", median(wall)},
         {"gpu_total_ms_median", median(gpuTotal)},
-        {"gpu_ms_median", passMedians}}},
+        {"gpu_ms_median", passMedians},
+        {"receiver_change_mean",
+         changes.empty() ? json(nullptr) : json(std::accumulate(changes.begin(), changes.end(), 0.0) / double(changes.size()))}}},
       {"parameters", run.parameters},
       {"sss", run.sss},
   };

@@ -2,6 +2,7 @@
 // stats.json: what ran, on which GL, how long each pass took, and every parameter's value.
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct FrameRecord {
   double timeS = 0.0;
   double wallMs = 0.0;  ///< CPU wall time from the start of the frame to glFinish
   sss::FrameTimings gpu;
+  /// gpu::relativeChange of the receivers' radiance against the frame before (NaN: first frame).
+  double receiverChange = std::numeric_limits<double>::quiet_NaN();
+  std::vector<glm::vec3> pointLights;  ///< where the point lights stood (flames move with their candle)
 };
 
 struct RunRecord {

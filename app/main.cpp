@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--ref-spp", bench.refSpp, "compute the reference with this many passes");
   benchCmd->add_option("--ref-points", bench.refPoints, "reference surface points per translucent object and pass (0: automatic)");
   benchCmd->add_flag("--equal-time", bench.equalTime, "also run the reference for as long as each row's first frame");
+  benchCmd->add_flag("--receivers", bench.receivers, "also compare the receivers' VPL term with the reference's emergent light (docs/vpl.md)");
   benchCmd->add_option("--gl", bench.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");

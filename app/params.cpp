@@ -337,8 +337,10 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     r.add(std::move(p));
   }
   {
-    Param p = declare("light.position", "vec3", "m", "First light, if a point light: its position.", -kMaxCoordinate,
-                      kMaxCoordinate);
+    Param p = declare("light.position", "vec3", "m",
+                      "First light, if a point light: its position (a light that follows a candle's flame stays "
+                      "here instead).",
+                      -kMaxCoordinate, kMaxCoordinate);
     p.getter = [](const Config& c) {
       if (c.scene.lights.empty() || c.scene.lights.front().kind != sss::LightKind::Point) return json(nullptr);
       return toJson(c.scene.lights.front().position);
@@ -348,6 +350,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
       if (light.kind != sss::LightKind::Point)
         throw InputError("the first light is directional (it has light.direction)");
       light.position = toVec3(v);
+      light.follow = -1;
     };
     r.add(std::move(p));
   }

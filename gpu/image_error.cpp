@@ -25,6 +25,22 @@ bool isObject(const glm::vec4& m) { return m.a >= kObjectMaskAlpha; }
 
 }  // namespace
 
+double relativeChange(const Image& now, const Image& before, const std::vector<std::uint8_t>& mask) {
+  if (now.width != before.width || now.height != before.height || mask.size() != now.pixels.size())
+    throw std::invalid_argument("relative change: the frames are " + sizeText(now) + " and " + sizeText(before) +
+                                " with a mask of " + std::to_string(mask.size()) + " pixels");
+  double change = 0.0, total = 0.0;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    const glm::dvec3 a(now.pixels[i]), b(before.pixels[i]);
+    const glm::dvec3 d = glm::abs(a - b);
+    change += d.x + d.y + d.z;
+    total += a.x + a.y + a.z;
+  }
+  if (total <= 0.0) return change > 0.0 ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
+  return change / total;
+}
+
 std::size_t objectPixels(const Image& mask) {
   return static_cast<std::size_t>(std::count_if(mask.pixels.begin(), mask.pixels.end(), isObject));
 }

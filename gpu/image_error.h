@@ -4,6 +4,8 @@
 // RMSE / √(mean_p (r² + g² + b²) of the reference), the normalisation of the reference's own error
 // statistic (sss::kReferenceErrorStatistic), so the two compare directly; max = max_p e_p.
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "gpu/image.h"
 
@@ -29,6 +31,12 @@ std::size_t objectPixels(const Image& mask);
 /// The metric above over the object pixels of `mask`. Throws std::invalid_argument with one line
 /// when the three sizes differ or the mask has no object pixel.
 ImageError imageError(const Image& image, const Image& reference, const Image& mask);
+
+/// Temporal stability (flicker): Σ_p Σ_c |now − before| / Σ_p Σ_c now over the pixels where `mask`
+/// is non-zero (one byte per pixel, top row first as Image), i.e. the mean absolute frame-to-frame
+/// change relative to the mean radiance. 0 for identical frames; throws std::invalid_argument on
+/// mismatched sizes; NaN when the masked pixels of `now` are all black.
+double relativeChange(const Image& now, const Image& before, const std::vector<std::uint8_t>& mask);
 
 /// |Δ| per band, alpha e_p (both 0 outside the mask), for pictures. Same errors as imageError.
 Image differenceImage(const Image& image, const Image& reference, const Image& mask);

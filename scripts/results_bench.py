@@ -86,6 +86,40 @@ def run(work, quick):
     for k in COVERAGE_KS:
         tallow("capture", "--preset", "bunny", "--size", "320x240", "--frames", "1", "--set", f"sss.maps={k}",
                "--set", "sss.samples=1", "--out", f"{work}/coverage/k{k}")
+    run_vpl(work, quick)
+
+
+VPL_COUNTS = [50, 80, 200]
+VPL_COST_COUNTS = [0, 50, 200, 800]
+VPL_COST_SIZES = ["160x120", "320x240"]
+
+
+def run_vpl(work, quick):
+    """Issue 7: the receivers against the reference's emergent light, the VPL costs, flicker, and the
+    candle at the paper's settings."""
+    # The candle holder with its fill light: the table's VPL term against `tallow reference --emergent`.
+    tallow("bench", "--preset", "candle-holder", "--size", "64x48" if quick else "160x120", "--methods",
+           "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "16"),
+           "--sweep", "vpl.count=" + ",".join(str(n) for n in [0] + VPL_COUNTS), "--receivers",
+           "--ref-spp", "4" if quick else "64", "--out", f"{work}/vpl_receivers")
+    # Costs: the vpl pass (frames while the maps accumulate) and the receivers' share of the surface
+    # pass (converged frames: only the surface pass runs) against N_vpl and the receiver pixels.
+    for size in VPL_COST_SIZES[:1] if quick else VPL_COST_SIZES:
+        for n in VPL_COST_COUNTS:
+            tallow("capture", "--preset", "candle-holder", "--size", size, "--frames", "7", "--set", "sss.frames=2",
+                   "--set", f"vpl.count={n}", "--out", f"{work}/vpl_cost/{size}_{n}")
+    # Flicker: the candle melting under a flame fixed where it is at t = 12 s, VPLs stable or
+    # re-drawn every frame; 30 frames per second.
+    tallow("capture", "--preset", "candle", "--size", "64x48", "--frames", "1", "--out", f"{work}/flicker/flame")
+    flame = load(f"{work}/flicker/flame/stats.json")["frames"][0]["point_lights"][0]
+    for stable in ("true", "false"):
+        tallow("capture", "--preset", "candle", "--size", "96x72" if quick else "160x120", "--frames",
+               "4" if quick else "16", "--fps", "30", "--set", "light.position=%.6g,%.6g,%.6g" % tuple(flame),
+               "--set", f"vpl.stable={stable}", "--out", f"{work}/flicker/stable_{stable}")
+    # The candle at the paper's Fig. 1 settings: K = 28, N = 45, 80 VPLs (every frame recomputes all).
+    tallow("capture", "--preset", "candle", "--size", "160x120" if quick else "640x480", "--frames", "3",
+           "--set", "sss.maps=28", "--set", "sss.samples=45", "--set", "vpl.count=80",
+           "--out", f"{work}/candle_paper")
 
 
 def load(path):
@@ -375,9 +409,86 @@ def report(work, md, images):
         add("4. Cached against no-cache: equal cost at %s occupancy (paper: 5.8%%) — cached wins from %s." % (
             pct(crossover), "a smaller occupancy than the paper's" if crossover < 0.058 else "**a larger occupancy than the paper's**"))
     add("")
+    report_vpl(work, add, images, rel_images)
     add("Rerun: `bash scripts/results.sh`; the experiments and their commands are in `scripts/results_bench.py`.")
     with open(md, "a") as f:
         f.write("\n".join(L) + "\n")
+
+
+def report_vpl(work, add, images, rel_images):
+    add("## Emergent light: virtual point lights (issue 7)")
+    add("")
+    b = load(f"{work}/vpl_receivers/bench.json")
+    ref = b["references"][0]
+    em = ref.get("emergent", {})
+    add("Candle holder (grapefruit juice, point light in the cavity, dim directional fill), %dx%d, maps converged"
+        " over %s frames. The table's VPL term (the frame minus the same frame with `vpl.count=0`) against"
+        " `tallow reference --emergent` (%s emitter points per pass, %s passes; its own relative standard error"
+        " over the receiver pixels %s), over the %s receiver pixels with emergent light (docs/vpl.md)."
+        % (b["width"], b["height"], b["rows"][0]["parameters"]["sss.frames"], em.get("emitter_points"),
+           ref.get("passes"), pct(em.get("rel_error")), em.get("receiver_pixels")))
+    add("")
+    add("| N_vpl | receivers' rel. RMSE | without the reference's ε | mean / reference | vpl pass [ms] | surface pass [ms] |")
+    add("|---:|---:|---:|---:|---:|---:|")
+    for row in b["rows"]:
+        e = row.get("receiver_error", {})
+        add("| %s | %s | %s | %s | %s | %s |" % (
+            row["settings"]["vpl.count"], pct(e.get("rel_rmse")),
+            pct(without_reference_noise(e.get("rel_rmse"), em.get("rel_error"))), fmt(e.get("mean_ratio")),
+            fmt(row["gpu_ms_median"].get("vpl"), 1), fmt(row["gpu_ms_median"].get("surface"), 1)))
+    add("")
+    add("VPL shadows: not implemented yet (V = 1, as the paper's §4); the holder is convex, so the cosine at each VPL")
+    add("already removes its own shadow, and no other occluder stands on the table here.")
+    add("")
+    # Costs.
+    add("Cost against N_vpl and receiver pixels (candle holder; llvmpipe, so the ratios matter, not the ms): the `vpl`")
+    add("pass (cube of the outermost surface + one compute invocation per VPL; medians over the frames that ran it)")
+    add("and the `surface` pass once the maps are converged (the receivers loop over every VPL).")
+    add("")
+    add("| size | N_vpl | receiver pixels | vpl pass [ms] | surface pass [ms] | surface − surface(N=0) per 1000 VPL·Mpixel [ms] |")
+    add("|---|---:|---:|---:|---:|---:|")
+    for size in VPL_COST_SIZES:
+        base = None
+        for n in VPL_COST_COUNTS:
+            path = f"{work}/vpl_cost/{size}_{n}/stats.json"
+            if not os.path.exists(path):
+                continue
+            st = load(path)
+            frames = st["frames"]
+            vpl = median([f["gpu_ms"]["vpl"] for f in frames if "vpl" in f["gpu_ms"]])
+            surface = median([f["gpu_ms"]["surface"] for f in frames[3:]])
+            w, h = st["resolution"]
+            if n == 0:
+                base = surface
+            per = None
+            if base is not None and n > 0:
+                per = (surface - base) / (n / 1000.0 * w * h / 1e6)
+            add("| %s | %d | %d | %s | %s | %s |" % (size, n, w * h, fmt(vpl, 2), fmt(surface, 2), fmt(per, 1)))
+    add("")
+    add("(receiver pixels: the image size; the table fills most of it.)")
+    add("")
+    # Flicker.
+    add("Temporal stability: the candle melting from t = 12 s at 30 frames per second under a flame fixed where it")
+    add("is at 12 s; the mean absolute frame-to-frame change of the receivers' radiance relative to their mean")
+    add("(stats.json `receiver_change`), with the paper's fixed directions and with VPLs re-drawn every frame. The")
+    add("maps restart every frame while the candle deforms, so their noise flickers too.")
+    add("")
+    add("| VPL directions | mean frame-to-frame change | frames |")
+    add("|---|---:|---:|")
+    for stable, label in (("true", "fixed (`vpl.stable=true`)"), ("false", "re-drawn every frame")):
+        st = load(f"{work}/flicker/stable_{stable}/stats.json")
+        add("| %s | %s | %d |" % (label, pct(st["summary"]["receiver_change_mean"]), len(st["frames"])))
+    add("")
+    # The paper's candle settings.
+    st = load(f"{work}/candle_paper/stats.json")
+    walls = [f["wall_ms"] for f in st["frames"]]
+    add("The candle at the paper's Fig. 1 settings (K = 28, N = 45, 80 VPLs), %dx%d, every frame recomputed as the"
+        % tuple(st["resolution"]))
+    add("candle melts: median frame %s ms on `%s` (the paper: 6 fps on a GTX 780 Ti; no GPU was available"
+        % (fmt(median(walls), 0), st["gl"]["GL_RENDERER"]))
+    add("for this run). Passes (median GPU ms): " + ", ".join(
+        "%s %s" % (k, fmt(v, 1)) for k, v in st["summary"]["gpu_ms_median"].items()) + ".")
+    add("")
 
 
 def main(argv):

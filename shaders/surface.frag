@@ -29,7 +29,7 @@ uniform float uEnvScale;
 uniform float uObjectEta;        // its relative index of refraction
 
 layout(location = 0) out vec4 oRadiance;
-layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it
+layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it, b: opaque
 
 const float PI = 3.14159265358979;
 
@@ -67,5 +67,5 @@ void main() {
   if (backFacing) n = -n;
   vec3 e = lightIrradiance(vWorldPosition, n) + vplIrradiance(vWorldPosition, n);
   oRadiance = vec4(uAlbedo / PI * e + uAlbedo * uAmbient, 1.0);
-  oCoverage = vec4(0.0);
+  oCoverage = vec4(0.0, 0.0, 1.0, 0.0);
 }

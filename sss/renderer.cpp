@@ -222,6 +222,13 @@ MapCoverage Renderer::mapCoverage() const {
   return m;
 }
 
+std::vector<std::uint8_t> Renderer::receiverMask() const {
+  const gpu::Image c = gpu::readColor(target_, 1, coverage_.width(), coverage_.height());
+  std::vector<std::uint8_t> mask(c.pixels.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].b > 0.5f ? 1 : 0;
+  return mask;
+}
+
 std::size_t Renderer::gpuBytes() const {
   return radiance_.bytes() + coverage_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
          (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0);

@@ -2,6 +2,7 @@
 // One frame as a plan of passes: only the passes this scene needs run (no point-light cube maps
 // without a point light that casts shadows, no shadow maps with shadows off…). plan() says which
 // and why (`--explain`); render() runs them and times each on the GPU.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ class Renderer {
   gpu::Image readRadiance() const;  ///< the last frame, linear, top row first
   /// Coverage of the last frame by the radiosity maps (reads the frame back: for stats and tests).
   MapCoverage mapCoverage() const;
+  /// Per pixel of the last frame (top row first): 1 where the camera sees an opaque surface (a
+  /// receiver of the VPLs' light), 0 elsewhere. Reads the frame back.
+  std::vector<std::uint8_t> receiverMask() const;
   const gpu::Texture& radiance() const { return radiance_; }
   /// Meshes, primitives and the last extraction of every field object; the field count reads a
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.

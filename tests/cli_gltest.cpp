@@ -80,8 +80,8 @@ TEST(Cli, CaptureOfABunnyWritesPngExrAndStats) {
 
 TEST(Cli, OsMesaAndEglAgreeWithinOneLevel) {
   test::TempDir dir;
-  const auto a = runTallow({"capture", "--gl", "osmesa", "--size", "320x180", "--out", (dir.path() / "a").string()});
-  const auto b = runTallow({"capture", "--gl", "egl", "--size", "320x180", "--out", (dir.path() / "b").string()});
+  const auto a = runTallow({"capture", "--preset", "bunny", "--gl", "osmesa", "--size", "320x180", "--out", (dir.path() / "a").string()});
+  const auto b = runTallow({"capture", "--preset", "bunny", "--gl", "egl", "--size", "320x180", "--out", (dir.path() / "b").string()});
   ASSERT_EQ(a.exitCode, 0) << a.err;
   ASSERT_EQ(b.exitCode, 0) << b.err;
   const gpu::Image pa = gpu::readPng(dir.path() / "a" / "frame_0000.png");

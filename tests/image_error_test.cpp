@@ -42,6 +42,25 @@ TEST(ImageError, ConstantOffsetInAllBands) {
   EXPECT_NEAR(e.meanRatio, (c + delta) / c, 1e-12);  // the bias of the mean: 1.5
 }
 
+TEST(ImageError, RelativeChangeOfTheMaskedPixels) {
+  // Half the masked pixels go from 0.5 to 0.25 in every band, half from 0.25 to 0.5: the summed
+  // |Δ| is 12 × 3 × 0.25 and the summed new radiance 6 × 3 × (0.25 + 0.5), so the change is 2/3.
+  // Pixels outside the mask change too, and must not count.
+  std::vector<std::uint8_t> mask(kW * kH, 0);
+  gpu::Image before = constant(glm::vec3(9.0f)), now = constant(glm::vec3(1.0f));
+  int k = 0;
+  for (int y = 1; y < 4; ++y)
+    for (int x = 1; x < 5; ++x, ++k) {
+      mask[static_cast<std::size_t>(y * kW + x)] = 1;
+      before.at(x, y) = glm::vec4(glm::vec3(k % 2 ? 0.5f : 0.25f), 1.0f);
+      now.at(x, y) = glm::vec4(glm::vec3(k % 2 ? 0.25f : 0.5f), 1.0f);
+    }
+  EXPECT_NEAR(gpu::relativeChange(now, before, mask), (12 * 3 * 0.25) / (6 * 3 * 0.75), 1e-12);
+  EXPECT_EQ(gpu::relativeChange(now, now, mask), 0.0);
+  EXPECT_THROW(gpu::relativeChange(now, constant(glm::vec3(1.0f), kW + 1, kH), mask), std::invalid_argument);
+  EXPECT_TRUE(std::isnan(gpu::relativeChange(constant(glm::vec3(0.0f)), constant(glm::vec3(0.0f)), mask)));
+}
+
 TEST(ImageError, MeanRatioSeesBiasThatNoiseHides) {
   // Half the pixels +δ, half −δ: the RMSE is √3 δ but the mean is unbiased (ratio 1); black on
   // black is ratio 1, light on black infinite.
