@@ -280,6 +280,21 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "directions every frame."),
                                true),
                    [](auto& c) -> auto& { return c.render.vpl.stable; }));
+  r.add(bind<bool>(withDefault(declare("vpl.shadows", "bool", "",
+                                       "Receivers' visibility of the VPLs (the paper has none): the VPLs are grouped "
+                                       "by direction into vpl.shadow_clusters clusters, each with one cube shadow map "
+                                       "from just outside its VPLs' mean position (docs/vpl.md)."),
+                               false),
+                   [](auto& c) -> auto& { return c.render.vpl.shadows; }));
+  r.add(bind<int>(withDefault(declare("vpl.shadow_clusters", "int", "clusters",
+                                      "C: cube shadow maps shared by the VPLs (with vpl.shadows).", 1,
+                                      sss::kMaxVplShadowClusters),
+                              64),
+                  [](auto& c) -> auto& { return c.render.vpl.shadowClusters; }));
+  r.add(bind<int>(withDefault(declare("vpl.shadow_size", "int", "texels",
+                                      "Face of each VPL cluster's cube shadow map (with vpl.shadows).", 8, 2048),
+                              64),
+                  [](auto& c) -> auto& { return c.render.vpl.shadowSize; }));
 
   // --- Scene-bound: no default; the preset gives the value --------------------------------------
   {

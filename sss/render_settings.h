@@ -47,6 +47,8 @@ enum class VplArea {
 
 /// Upper bound of vpl.count (the parameter's range; the receiver loop's cost grows with it).
 inline constexpr int kMaxVpls = 4096;
+/// Upper bound of vpl.shadow_clusters (the receiver shader's uniform arrays).
+inline constexpr int kMaxVplShadowClusters = 64;
 
 /// Transport of emergent light by virtual point lights (the paper's §3.4, Eqs. 15–16; vpl.*).
 struct VplSettings {
@@ -55,7 +57,9 @@ struct VplSettings {
   VplPlacement placement = VplPlacement::Auto;  ///< vpl.placement
   VplArea area = VplArea::SolidAngle;           ///< vpl.area
   bool stable = true;            ///< vpl.stable: the same directions every frame (false: new ones each frame)
-  bool shadows = false;          ///< vpl.shadows: receivers' visibility of the VPLs
+  bool shadows = false;          ///< vpl.shadows: receivers' visibility of the VPLs (clustered cube shadow maps)
+  int shadowClusters = 64;       ///< vpl.shadow_clusters: C, cube shadow maps shared by the VPLs of a cluster
+  int shadowSize = 64;           ///< vpl.shadow_size [texels]: face of each cluster's cube shadow map
 };
 
 struct RenderSettings {

@@ -125,7 +125,8 @@ std::string Renderer::vplKey(const RenderSettings& settings, const std::string& 
   const VplSettings& v = settings.vpl;
   return mapStateKey + "|vpl " + std::to_string(v.count) + ',' + std::to_string(v.cubeSize) + ',' +
          std::to_string(static_cast<int>(v.placement)) + ',' + std::to_string(static_cast<int>(v.area)) + ',' +
-         std::to_string(v.stable);
+         std::to_string(v.stable) + ',' + std::to_string(v.shadows) + ',' + std::to_string(v.shadowClusters) + ',' +
+         std::to_string(v.shadowSize);
 }
 
 void Renderer::restartAccumulation() {

@@ -161,6 +161,8 @@ void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings,
   }
 }
 
+void ShadowPass::bindPoint(GLuint pointUnit) const { (point_.id() ? point_ : dummyPoint_).bind(pointUnit); }
+
 void ShadowPass::bind(GLuint directionalUnit, GLuint pointUnit) const {
   (directional_.id() ? directional_ : dummyDirectional_).bind(directionalUnit);
   (point_.id() ? point_ : dummyPoint_).bind(pointUnit);

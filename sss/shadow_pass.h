@@ -40,6 +40,7 @@ class ShadowPass {
   const ShadowLayers& layers() const { return layers_; }
   /// Bind to the units the receiver shader expects; unused maps get a 1-texel dummy (lit).
   void bind(GLuint directionalUnit, GLuint pointUnit) const;
+  void bindPoint(GLuint pointUnit) const;
   std::size_t bytes() const { return directional_.bytes() + point_.bytes(); }
 
  private:

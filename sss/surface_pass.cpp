@@ -13,6 +13,7 @@ constexpr GLuint kMapsUnit = 2;
 constexpr GLuint kMapDepthUnit = 3;
 constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
+constexpr GLuint kVplShadowUnit = 11;
 
 }  // namespace
 
@@ -107,7 +108,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uMapDepth", static_cast<int>(kMapDepthUnit));
     p.set("uMapCount", 0);
   }
-  VirtualPointLights::setReceiverUniforms(p, vpls);
+  VirtualPointLights::setReceiverUniforms(p, vpls, kVplShadowUnit);
 
   target.bind();
   glViewport(0, 0, width, height);

@@ -57,6 +57,48 @@ std::vector<glm::vec3> vplDirections(int count, int first) {
   return out;
 }
 
+std::vector<int> vplClusters(const std::vector<glm::vec3>& directions, int clusters) {
+  const std::vector<glm::vec3> centres = vplDirections(std::max(clusters, 1), 0);
+  std::vector<int> out;
+  out.reserve(directions.size());
+  for (const glm::vec3& d : directions) {
+    int best = 0;
+    for (int c = 1; c < static_cast<int>(centres.size()); ++c)
+      if (glm::dot(d, centres[static_cast<std::size_t>(c)]) > glm::dot(d, centres[static_cast<std::size_t>(best)])) best = c;
+    out.push_back(best);
+  }
+  return out;
+}
+
+std::vector<VplClusterCamera> vplClusterCameras(const std::vector<VplRecord>& records, int clusters, float margin) {
+  std::vector<glm::dvec3> sum(static_cast<std::size_t>(clusters), glm::dvec3(0.0));
+  std::vector<int> count(static_cast<std::size_t>(clusters), 0);
+  const auto clusterOf = [&](const VplRecord& r) {
+    return static_cast<std::size_t>(std::clamp(static_cast<int>(r.radiance.w + 0.5f), 0, clusters - 1));
+  };
+  for (const VplRecord& r : records) {
+    if (r.position.w <= 0.0f) continue;
+    sum[clusterOf(r)] += glm::dvec3(glm::vec3(r.position));
+    ++count[clusterOf(r)];
+  }
+  // The medoid: the cluster's VPL nearest its mean. It stands on the surface (the mean of a curved
+  // patch lies inside the object, and moving it out by the patch's size can put it inside a
+  // neighbouring object), so the camera is that VPL lifted by `margin` along its normal.
+  std::vector<double> best(static_cast<std::size_t>(clusters), 1e300);
+  std::vector<VplClusterCamera> out(static_cast<std::size_t>(clusters));
+  for (const VplRecord& r : records) {
+    if (r.position.w <= 0.0f) continue;
+    const std::size_t c = clusterOf(r);
+    const glm::dvec3 x(glm::vec3(r.position));
+    const double d = glm::length(x - sum[c] / double(count[c]));
+    if (d >= best[c]) continue;
+    best[c] = d;
+    out[c].position = glm::vec3(r.position) + margin * glm::vec3(r.normal);
+    out[c].valid = true;
+  }
+  return out;
+}
+
 std::vector<glm::vec3> surroundedLights(const Scene& scene, const glm::vec3& boxMin, const glm::vec3& boxMax) {
   std::vector<glm::vec3> out;
   for (const Light& l : scene.lights)
@@ -70,7 +112,8 @@ VirtualPointLights::VirtualPointLights(const gpu::ShaderLibrary& shaders)
     : cubeProgram_(shaders, {{{GL_VERTEX_SHADER, "sss/layered.vert"},
                               {GL_GEOMETRY_SHADER, "sss/layered.geom"},
                               {GL_FRAGMENT_SHADER, "sss/map_gbuffer.frag"}}}),
-      compute_(shaders, {{{GL_COMPUTE_SHADER, "sss/vpl.comp"}}}) {}
+      compute_(shaders, {{{GL_COMPUTE_SHADER, "sss/vpl.comp"}}}),
+      shadows_(shaders) {}
 
 bool VirtualPointLights::applies(const Scene& scene, const RenderSettings& settings) {
   return settings.vpl.count > 0 && RadiosityMaps::applies(scene, settings) && anyOpaque(scene);
@@ -85,6 +128,16 @@ void VirtualPointLights::checkLimits(const Scene& scene, const RenderSettings& s
     throw std::invalid_argument("vpl.cube_size: " + std::to_string(settings.vpl.cubeSize) +
                                 " exceeds this GPU's GL_MAX_CUBE_MAP_TEXTURE_SIZE of " + std::to_string(maxCube));
   const auto bytes = static_cast<long long>(settings.vpl.count) * static_cast<long long>(sizeof(VplRecord));
+  if (settings.vpl.shadows && 6 * settings.vpl.shadowClusters > [] {
+        GLint layers = 0;
+        glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
+        return layers;
+      }())
+    throw std::invalid_argument("vpl.shadow_clusters: " + std::to_string(settings.vpl.shadowClusters) +
+                                " cube maps exceed this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
+  if (settings.vpl.shadows && settings.vpl.shadowSize > maxCube)
+    throw std::invalid_argument("vpl.shadow_size: " + std::to_string(settings.vpl.shadowSize) +
+                                " exceeds this GPU's GL_MAX_CUBE_MAP_TEXTURE_SIZE of " + std::to_string(maxCube));
   if (bytes > maxBlock)
     throw std::invalid_argument("vpl.count: " + std::to_string(settings.vpl.count) + " VPLs need " +
                                 std::to_string(bytes) + " bytes, over this GPU's GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " +
@@ -128,12 +181,16 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
 
   // Directions: uploaded once while stable, new Halton points every frame otherwise.
   const int first = v.stable ? kStableFirst : kStableFirst + (1 + frame) * count_;
+  const int clusters = std::clamp(v.shadowClusters, 1, kMaxVplShadowClusters);
   if (!directions_.id() || directions_.size() != static_cast<std::size_t>(count_) * sizeof(glm::vec4) ||
-      first != directionsFirst_) {
-    std::vector<glm::vec4> d;
-    for (const glm::vec3& dir : vplDirections(count_, first)) d.emplace_back(dir, 0.0f);
+      first != directionsFirst_ || clusters != directionsClusters_) {
+    const std::vector<glm::vec3> dirs = vplDirections(count_, first);
+    const std::vector<int> cluster = vplClusters(dirs, clusters);
+    std::vector<glm::vec4> d;  // w: the shadow cluster (vpl.comp copies it into the record)
+    for (std::size_t i = 0; i < dirs.size(); ++i) d.emplace_back(dirs[i], static_cast<float>(cluster[i]));
     directions_ = gpu::Buffer(d.size() * sizeof(glm::vec4), d.data());
     directionsFirst_ = first;
+    directionsClusters_ = clusters;
   }
   if (records_.size() != static_cast<std::size_t>(count_) * sizeof(VplRecord))
     records_ = gpu::Buffer(static_cast<std::size_t>(count_) * sizeof(VplRecord));
@@ -204,12 +261,59 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   glDispatchCompute(static_cast<GLuint>((count_ + 63) / 64), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   glUseProgram(0);
+
+  // Step 3 (vpl.shadows): one cube shadow map per cluster, from just outside its VPLs. The cameras
+  // come from the records read back (N_vpl × 48 bytes), then the shadow pass draws the scene as for
+  // point lights.
+  shadowed_ = v.shadows;
+  clusterCentre_.assign(static_cast<std::size_t>(clusters), glm::vec3(0.0f));
+  clusterRange_.assign(static_cast<std::size_t>(clusters), 0.0f);
+  clusterCube_.assign(static_cast<std::size_t>(clusters), 0);
+  if (!v.shadows) return;
+  const float margin = 1e-2f * glm::length(size);
+  const std::vector<VplClusterCamera> cameras = vplClusterCameras(read(), clusters, margin);
+  Scene casters;
+  std::vector<int> lightOf(static_cast<std::size_t>(clusters), -1);
+  for (std::size_t c = 0; c < cameras.size(); ++c) {
+    if (!cameras[c].valid) continue;
+    Light l;
+    l.kind = LightKind::Point;
+    l.position = cameras[c].position;
+    l.castsShadows = true;
+    lightOf[c] = static_cast<int>(casters.lights.size());
+    casters.lights.push_back(l);
+    clusterCentre_[c] = cameras[c].position;
+  }
+  if (casters.lights.empty()) return;
+  RenderSettings shadowSettings = settings;
+  shadowSettings.shadows = true;
+  shadowSettings.shadowMapSize = 2 * v.shadowSize;  // ShadowPass gives cube faces half the map size
+  shadows_.reset(casters.lights.size());
+  shadows_.renderPoint(casters, shadowSettings, geometry);
+  const ShadowLayers& layers = shadows_.layers();
+  for (std::size_t c = 0; c < cameras.size(); ++c)
+    if (lightOf[c] >= 0) {
+      const auto i = static_cast<std::size_t>(lightOf[c]);
+      clusterRange_[c] = layers.pointRange[i];
+      clusterCube_[c] = layers.pointCube[i];
+    }
 }
 
-void VirtualPointLights::setReceiverUniforms(gpu::Program& program, const VirtualPointLights* lights) {
+void VirtualPointLights::setReceiverUniforms(gpu::Program& program, const VirtualPointLights* lights,
+                                             GLuint shadowUnit) {
   const int n = lights ? lights->count_ : 0;
   program.set("uVplCount", n);
+  program.set("uVplShadow", static_cast<int>(shadowUnit));
+  const bool shadowed = n > 0 && lights->shadowed_;
+  program.set("uVplShadows", shadowed ? 1 : 0);
+  if (lights) lights->shadows_.bindPoint(shadowUnit);
   if (n > 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecordsBinding, lights->records_.id());
+  if (!shadowed) return;
+  const int clusters = static_cast<int>(lights->clusterCentre_.size());
+  program.set("uVplClusterCentre", lights->clusterCentre_.data(), clusters);
+  glProgramUniform1fv(program.id(), program.location("uVplClusterRange"), clusters, lights->clusterRange_.data());
+  glProgramUniform1iv(program.id(), program.location("uVplClusterCube"), clusters, lights->clusterCube_.data());
+  program.set("uVplShadowTexelAngle", lights->shadows_.layers().pointTexelAngle);
 }
 
 std::vector<VplRecord> VirtualPointLights::read() const {
@@ -220,7 +324,7 @@ std::vector<VplRecord> VirtualPointLights::read() const {
 
 std::size_t VirtualPointLights::bytes() const {
   return cubePosition_.bytes() + cubeNormal_.bytes() + cubeDepth_.bytes() + records_.size() + directions_.size() +
-         faceViews_.size();
+         faceViews_.size() + (shadowed_ ? shadows_.bytes() : 0);
 }
 
 }  // namespace tallow::sss

@@ -22,6 +22,7 @@
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
+#include "sss/shadow_pass.h"
 
 namespace tallow::sss {
 
@@ -29,12 +30,25 @@ namespace tallow::sss {
 struct VplRecord {
   glm::vec4 position{0.0f};  ///< x_v; w: η of its object (0: inactive, no surface or not backlit)
   glm::vec4 normal{0.0f};    ///< n_v (unit); w: A_v [m²], the surface it stands for
-  glm::vec4 radiance{0.0f};  ///< rgb: B(x_v)/π [W/(m²·sr)], the radiance before Fresnel; w: Algorithm 1's n
+  glm::vec4 radiance{0.0f};  ///< rgb: B(x_v)/π [W/(m²·sr)], the radiance before Fresnel; w: its shadow cluster
 };
 
 /// The N_vpl directions from the bounding box's centre: Halton directions `first` … `first` + count − 1
 /// (area-uniform on the sphere; the maps' directions are the same sequence from 0).
 std::vector<glm::vec3> vplDirections(int count, int first);
+
+/// The shadow cluster of each direction: the nearest of `clusters` Halton directions (fixed, so a
+/// VPL keeps its cluster from frame to frame).
+std::vector<int> vplClusters(const std::vector<glm::vec3>& directions, int clusters);
+
+/// One cluster's shadow camera: its active VPL nearest the mean of their positions (on the surface,
+/// unlike the mean), lifted by `margin` along that VPL's normal. `valid` false when the cluster has
+/// no active VPL.
+struct VplClusterCamera {
+  glm::vec3 position{0.0f};
+  bool valid = false;
+};
+std::vector<VplClusterCamera> vplClusterCameras(const std::vector<VplRecord>& records, int clusters, float margin);
 
 /// Point lights inside the box (min, max) of the translucent objects: the "surrounded" sources
 /// of the paper's §3.4, for which VPLs stand on backlit surface only (placement auto).
@@ -58,9 +72,10 @@ class VirtualPointLights {
   /// directions when vpl.stable is off.
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
               const RadiosityMaps& maps, int frame);
-  /// Binds the VPL buffer and sets uVplCount on a program that includes sss/vpl_receiver.glsl;
-  /// count 0 when `lights` is null.
-  static void setReceiverUniforms(gpu::Program& program, const VirtualPointLights* lights);
+  /// Binds the VPL buffer and sets uVplCount (0 when `lights` is null) and the VPL shadow uniforms
+  /// on a program that includes sss/vpl_receiver.glsl; the cluster cube shadow maps (or a lit dummy)
+  /// go on texture unit `shadowUnit`.
+  static void setReceiverUniforms(gpu::Program& program, const VirtualPointLights* lights, GLuint shadowUnit);
 
   int count() const { return count_; }
   glm::vec3 centre() const { return centre_; }
@@ -73,7 +88,12 @@ class VirtualPointLights {
   gpu::Program cubeProgram_, compute_;
   gpu::Texture cubePosition_, cubeNormal_, cubeDepth_;
   gpu::Buffer records_, directions_, faceViews_;
-  int count_ = 0, directionsFirst_ = -1;
+  ShadowPass shadows_;                       ///< the clusters' cube shadow maps, as point lights
+  std::vector<glm::vec3> clusterCentre_;     ///< per cluster: its shadow camera
+  std::vector<float> clusterRange_;          ///< per cluster: distance stored as depth 1 (0: no cluster)
+  std::vector<int> clusterCube_;             ///< per cluster: its cube in the shadow pass's array
+  bool shadowed_ = false;
+  int count_ = 0, directionsFirst_ = -1, directionsClusters_ = 0;
   glm::vec3 centre_{0.0f};
   float boxArea_ = 0.0f;
 };

@@ -279,5 +279,52 @@ TEST(Vpl, TheTableAgainstTheReferencesEmergentLight) {
   EXPECT_LT(errors.back(), errors.front()) << "more VPLs, less error";
 }
 
+TEST(Vpl, ShadowsDarkenWhatTheBlockHidesAsTheReferenceDoes) {
+  // presets/candle-holder-block.json: an opaque block beside the holder hides part of the table from
+  // its wall. Where the reference's emergent light is less than half the unshadowed VPL term (the
+  // block's shadow), vpl.shadows must bring the VPL term most of the way to the reference; over all
+  // receiver pixels it must not make the error worse (64 clusters).
+  const std::vector<std::string> base = {"render.width=64", "render.height=48", "sss.map_size=256", "sss.frames=4",
+                                         "vpl.shadow_clusters=64"};
+  const auto term = [&](const std::vector<std::string>& sets, sss::ReferenceResult* ref) {
+    PresetSession off("candle-holder-block", with(base, with(sets, {"vpl.count=0"})));
+    PresetSession on("candle-holder-block", with(base, sets));
+    gpu::Image dark, lit;
+    for (int f = 0; f < 4; ++f) dark = off.render(), lit = on.render();
+    for (std::size_t i = 0; i < lit.pixels.size(); ++i)
+      lit.pixels[i] = glm::vec4(glm::vec3(lit.pixels[i] - dark.pixels[i]), 1.0f);
+    if (ref) {
+      sss::ReferenceSettings rs;
+      rs.maxPasses = 128;
+      rs.emergentLight = true;
+      *ref = sss::renderReference(off.scene(), off.settings(), rs);
+    }
+    return lit;
+  };
+  sss::ReferenceResult ref;
+  const gpu::Image unshadowed = term({"vpl.shadows=false"}, &ref), shadowed = term({"vpl.shadows=true"}, nullptr);
+  double before = 0.0, after = 0.0;
+  int hidden = 0;
+  for (std::size_t i = 0; i < ref.emergent.pixels.size(); ++i) {
+    if (ref.emergent.pixels[i].a < 0.5f) continue;
+    const double r = glm::dot(glm::dvec3(glm::vec3(ref.emergent.pixels[i])), glm::dvec3(1.0));
+    const double u = glm::dot(glm::dvec3(glm::vec3(unshadowed.pixels[i])), glm::dvec3(1.0));
+    const double s = glm::dot(glm::dvec3(glm::vec3(shadowed.pixels[i])), glm::dvec3(1.0));
+    if (u <= 0.0 || r >= 0.5 * u) continue;
+    ++hidden;
+    before += std::abs(u - r);
+    after += std::abs(s - r);
+  }
+  const gpu::ImageError eOff = gpu::imageError(unshadowed, ref.emergent, ref.emergent);
+  const gpu::ImageError eOn = gpu::imageError(shadowed, ref.emergent, ref.emergent);
+  std::printf("[ vpl ] block's shadow: %d pixels, mean |VPL term - reference| %.3g without shadows, %.3g with\n",
+              hidden, before / std::max(hidden, 1), after / std::max(hidden, 1));
+  std::printf("[ vpl ] all receivers (reference ε %.1f%%): rel. RMSE %.1f%% -> %.1f%%, mean / reference %.3f -> %.3f\n",
+              100 * ref.emergentRelError, 100 * eOff.relRmse, 100 * eOn.relRmse, eOff.meanRatio, eOn.meanRatio);
+  ASSERT_GT(hidden, 50) << "the block must hide a good part of the table";
+  EXPECT_LT(after, 0.5 * before);
+  EXPECT_LE(eOn.relRmse, eOff.relRmse);
+}
+
 }  // namespace
 }  // namespace tallow

@@ -10,7 +10,7 @@ layout(local_size_x = 64) in;
 
 struct VplGpu { vec4 position; vec4 normal; vec4 radiance; };  // sss::VplRecord
 layout(std430, binding = 6) writeonly buffer Vpls { VplGpu vpls[]; };
-layout(std430, binding = 7) readonly buffer Directions { vec4 directions[]; };
+layout(std430, binding = 7) readonly buffer Directions { vec4 directions[]; };  // w: shadow cluster
 
 uniform int uVplCount;                 // N_vpl
 uniform vec3 uCentre;                  // c, the cube's centre
@@ -59,7 +59,7 @@ void main() {
       vec3 b = scatteredRadiosity(x, n, side * t1, side * t2, seenBy);
       rec.position = vec4(x, uSlotEta[slot]);
       rec.normal = vec4(n, area);
-      rec.radiance = vec4(b / VPL_PI, seenBy);
+      rec.radiance = vec4(b / VPL_PI, directions[v].w);  // w: the shadow cluster
     }
   }
   vpls[v] = rec;

@@ -5,12 +5,33 @@
 // so a receiver next to a VPL sees at most the radiance of the surface it stands for, never the
 // 1/d² spike of a point.
 #include "bssrdf/fresnel.glsl"
+#include "common/lights.glsl"
 
 struct VplGpu { vec4 position; vec4 normal; vec4 radiance; };  // sss::VplRecord
 layout(std430, binding = 6) readonly buffer VplRecords { VplGpu vplRecords[]; };
 uniform int uVplCount;  // 0: no VPLs this frame
 
-float vplVisibility(int v, vec3 p, vec3 n) { return 1.0; }
+// VPL shadows (vpl.shadows): each VPL's cluster has a cube shadow map (distance / range as depth)
+// from a camera just outside the cluster's VPLs; the receiver is tested against it, with the
+// normal offset of the point lights' shadows (common/lights.glsl).
+const int MAX_VPL_CLUSTERS = 64;
+uniform int uVplShadows;
+uniform samplerCubeArrayShadow uVplShadow;
+uniform vec3 uVplClusterCentre[MAX_VPL_CLUSTERS];
+uniform float uVplClusterRange[MAX_VPL_CLUSTERS];  // 0: no shadow map
+uniform int uVplClusterCube[MAX_VPL_CLUSTERS];
+uniform float uVplShadowTexelAngle;
+
+float vplVisibility(int v, vec3 p, vec3 n) {
+  if (uVplShadows == 0) return 1.0;
+  int c = clamp(int(vplRecords[v].radiance.w + 0.5), 0, MAX_VPL_CLUSTERS - 1);
+  float range = uVplClusterRange[c];
+  if (range <= 0.0) return 1.0;
+  vec3 centre = uVplClusterCentre[c];
+  vec3 q = p + n * (normalOffsetTexels() * uVplShadowTexelAngle * length(p - centre));
+  vec3 dq = q - centre;
+  return texture(uVplShadow, vec4(dq, float(uVplClusterCube[c])), length(dq) / range);
+}
 
 // Irradiance at receiver point p (normal n) from all VPLs [W/m²].
 vec3 vplIrradiance(vec3 p, vec3 n) {
