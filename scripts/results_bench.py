@@ -102,6 +102,10 @@ def run_vpl(work, quick):
            "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "16"),
            "--sweep", "vpl.count=" + ",".join(str(n) for n in [0] + VPL_COUNTS), "--receivers",
            "--ref-spp", "4" if quick else "64", "--out", f"{work}/vpl_receivers")
+    # VPL shadows: an opaque block beside the holder, shadows off and on.
+    tallow("bench", "--preset", "candle-holder-block", "--size", "64x48" if quick else "96x72", "--methods",
+           "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "8"), "--sweep", "vpl.shadows=false,true",
+           "--receivers", "--ref-spp", "8" if quick else "256", "--out", f"{work}/vpl_shadows")
     # Costs: the vpl pass (frames while the maps accumulate) and the receivers' share of the surface
     # pass (converged frames: only the surface pass runs) against N_vpl and the receiver pixels.
     for size in VPL_COST_SIZES[:1] if quick else VPL_COST_SIZES:
@@ -437,8 +441,28 @@ def report_vpl(work, add, images, rel_images):
             pct(without_reference_noise(e.get("rel_rmse"), em.get("rel_error"))), fmt(e.get("mean_ratio")),
             fmt(row["gpu_ms_median"].get("vpl"), 1), fmt(row["gpu_ms_median"].get("surface"), 1)))
     add("")
-    add("VPL shadows: not implemented yet (V = 1, as the paper's §4); the holder is convex, so the cosine at each VPL")
-    add("already removes its own shadow, and no other occluder stands on the table here.")
+    s = load(f"{work}/vpl_shadows/bench.json")
+    sem = s["references"][0].get("emergent", {})
+    add("VPL shadows (`vpl.shadows`, clustered cube shadow maps, docs/vpl.md) on `candle-holder-block`, an opaque block")
+    add("beside the holder, %dx%d, %s VPLs, %s clusters (reference ε over the receivers %s):" % (
+        s["width"], s["height"], s["rows"][0]["parameters"]["vpl.count"],
+        s["rows"][0]["parameters"]["vpl.shadow_clusters"], pct(sem.get("rel_error"))))
+    add("")
+    add("| vpl.shadows | receivers' rel. RMSE | without ε | mean / reference | vpl pass [ms] |")
+    add("|---|---:|---:|---:|---:|")
+    for row in s["rows"]:
+        e = row.get("receiver_error", {})
+        add("| %s | %s | %s | %s | %s |" % (row["settings"]["vpl.shadows"], pct(e.get("rel_rmse")),
+                                            pct(without_reference_noise(e.get("rel_rmse"), sem.get("rel_error"))),
+                                            fmt(e.get("mean_ratio")), fmt(row["gpu_ms_median"].get("vpl"), 1)))
+    add("")
+    for row in s["rows"]:
+        if row["settings"]["vpl.shadows"] == "true":
+            copy_figure(f"{work}/vpl_shadows/{row['row']}_last.png", images, "vpl_shadows_on.png")
+        else:
+            copy_figure(f"{work}/vpl_shadows/{row['row']}_last.png", images, "vpl_shadows_off.png")
+    add("Without and with VPL shadows (last frame): ![off](%s/vpl_shadows_off.png) ![on](%s/vpl_shadows_on.png)"
+        % (rel_images, rel_images))
     add("")
     # Costs.
     add("Cost against N_vpl and receiver pixels (candle holder; llvmpipe, so the ratios matter, not the ms): the `vpl`")
