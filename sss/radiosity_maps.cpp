@@ -95,6 +95,20 @@ std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float rad
   return radiosityMapViews(directions, centre, radius);
 }
 
+void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry, const std::vector<int>& slots,
+                            const gpu::Buffer& layerViews, int instances) {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews.id());
+  program.set("uLayerBase", 0);
+  for (const DrawItem& item : geometry.items()) {
+    const int slot = slots[static_cast<std::size_t>(item.objectIndex)];
+    if (slot < 0) continue;
+    program.set("uModel", item.model);
+    program.set("uNormalMatrix", item.normalMatrix);
+    program.set("uSlot", slot);
+    item.draw(instances);
+  }
+}
+
 int mapCount(const Scene& scene, const RenderSettings& settings) {
   return scene.mapDirections.empty() ? settings.sss.maps : static_cast<int>(scene.mapDirections.size());
 }
@@ -444,16 +458,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   LayeredState state;
   glViewport(0, 0, size, size);
   const auto drawTranslucent = [&](gpu::Program& program) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, mapLayerViews_.id());
-    program.set("uLayerBase", 0);
-    for (const DrawItem& item : geometry.items()) {
-      const int slot = slots_[static_cast<std::size_t>(item.objectIndex)];
-      if (slot < 0) continue;
-      program.set("uModel", item.model);
-      program.set("uNormalMatrix", item.normalMatrix);
-      program.set("uSlot", slot);
-      item.draw(k);
-    }
+    drawTranslucentLayered(program, geometry, slots_, mapLayerViews_, k);
   };
 
   if (frames_ == 0) {

@@ -47,6 +47,12 @@ std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions,
 /// K of a frame: the scene's listed map directions, else sss.maps.
 int mapCount(const Scene& scene, const RenderSettings& settings);
 
+/// Draws the translucent scene objects (slots[objectIndex] ≥ 0) with `program` — sss/layered.vert
+/// and sss/layered.geom, uniforms uModel, uNormalMatrix, uSlot — once into each of `instances`
+/// layers whose view-projections `layerViews` holds (std430 mat4 per layer, layered.geom's binding).
+void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry, const std::vector<int>& slots,
+                            const gpu::Buffer& layerViews, int instances);
+
 /// The translucent objects' bounding sphere in world units (centre, radius); radius 0 when none.
 struct BoundingSphere {
   glm::vec3 centre{0.0f};

@@ -9,7 +9,6 @@
 namespace tallow::sss {
 namespace {
 
-constexpr GLuint kLayerViewsBinding = 4;  // sss/layered.geom
 constexpr GLuint kRecordsBinding = 6;     // sss/vpl.comp, sss/vpl_receiver.glsl
 constexpr GLuint kDirectionsBinding = 7;  // sss/vpl.comp
 constexpr GLuint kMapsUnit = 0, kMapDepthUnit = 1, kCubePositionUnit = 2, kCubeNormalUnit = 3;
@@ -223,17 +222,7 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
     fb.bind();
     glViewport(0, 0, cube, cube);
     cubeProgram_.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, faceViews_.id());
-    cubeProgram_.set("uLayerBase", 0);
-    const std::vector<int>& slots = maps.slots();
-    for (const DrawItem& item : geometry.items()) {
-      const int slot = slots[static_cast<std::size_t>(item.objectIndex)];
-      if (slot < 0) continue;
-      cubeProgram_.set("uModel", item.model);
-      cubeProgram_.set("uNormalMatrix", item.normalMatrix);
-      cubeProgram_.set("uSlot", slot);
-      item.draw(6);
-    }
+    drawTranslucentLayered(cubeProgram_, geometry, maps.slots(), faceViews_, 6);
   }
 
   // Step 2: the VPLs.
