@@ -214,15 +214,17 @@ TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
   // fd 3 once it accepts connections, so we do not probe numbers that another X server starting at
   // the same moment can take (xvfb-run's choice can). Servers started by other processes at once
   // can still collide on a machine running several test suites; a display that refuses us is
-  // retried with a fresh server (three tries), any other failure is the test's.
+  // retried with a fresh server after a pause (five tries: once in CI all three quick tries were
+  // refused within a second while another suite ran), any other failure is the test's.
   const std::string script =
-      "cd " + dir.path().string() + " || exit 1; for try in 1 2 3; do rm -f display.txt; "
+      "cd " + dir.path().string() + " || exit 1; for try in 1 2 3 4 5; do rm -f display.txt; "
       "Xvfb -displayfd 3 -screen 0 800x600x24 -nolisten tcp 3>display.txt >xvfb.log 2>&1 & pid=$!; "
       "for i in $(seq 400); do [ -s display.txt ] && break; sleep 0.05; done; n=$(head -n 1 display.txt); "
       "if [ -z \"$n\" ]; then kill $pid 2>/dev/null; wait $pid 2>/dev/null; echo \"Xvfb did not start: $(cat xvfb.log)\" >err.txt; continue; fi; "
       "DISPLAY=:$n " + std::string(TALLOW_TEST_BINARY) + " view --frames 3 --size 320x180 >err.txt 2>&1; "
       "rc=$?; kill $pid; wait $pid 2>/dev/null; "
-      "if [ $rc -ne 0 ] && grep -q \"Failed to open display\" err.txt; then continue; fi; exit $rc; done; exit 1";
+      "if [ $rc -ne 0 ] && grep -q \"Failed to open display\" err.txt; then cat xvfb.log >>err.txt; sleep $try; continue; fi; "
+      "exit $rc; done; exit 1";
   const std::string command = "bash -c '" + script + "'";
   const int status = std::system(command.c_str());
   std::ifstream err(dir.path() / "err.txt");
