@@ -8,6 +8,9 @@
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
+# TALLOW_RESULTS_WORK=DIR keeps every run's output in DIR (a temporary folder, removed, otherwise);
+# with TALLOW_RESULTS_RESUME=1 as well, runs whose output is already whole in DIR are not repeated,
+# so an interrupted regeneration resumes and one experiment can be rerun by deleting its folder.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(bash "$root/scripts/build.sh" | tail -n 1)"
@@ -16,16 +19,23 @@ repeats=5
 maps_repeats=3
 quick=""
 if [ "${1:-}" = "--quick" ]; then repeats=1; maps_repeats=1; quick=1; fi
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+if [ -n "${TALLOW_RESULTS_WORK:-}" ]; then
+  work="$TALLOW_RESULTS_WORK"
+  mkdir -p "$work"
+else
+  work="$(mktemp -d)"
+  trap 'rm -rf "$work"' EXIT
+fi
+# kept FILE: true when resuming and FILE is already whole (every output is written by rename).
+kept() { [ "${TALLOW_RESULTS_RESUME:-0}" = "1" ] && [ -s "$1" ]; }
 
 echo "results: tallow probe extraction (blob, candle; 64, 128, 256; $repeats repeats)"
-"$tallow" probe extraction --fields blob,candle --res 64,128,256 --repeats "$repeats" --out "$work/extraction.json"
+kept "$work/extraction.json" || "$tallow" probe extraction --fields blob,candle --res 64,128,256 --repeats "$repeats" --out "$work/extraction.json"
 echo "results: tallow probe maps (bunny; K 4, 8, 16; N 1, 4, 8; 256² maps; $maps_repeats repeats)"
-"$tallow" probe maps --preset bunny --k 4,8,16 --n 1,4,8 --map-size 256 --repeats "$maps_repeats" --out "$work/maps.json"
+kept "$work/maps.json" || "$tallow" probe maps --preset bunny --k 4,8,16 --n 1,4,8 --map-size 256 --repeats "$maps_repeats" --out "$work/maps.json"
 for gather in fragment compute; do
   echo "results: tallow probe maps (bunny; K 8, N 4; 256² maps; sss.gather=$gather)"
-  "$tallow" probe maps --preset bunny --k 8 --n 4 --map-size 256 --repeats "$maps_repeats" --gather "$gather" \
+  kept "$work/gather_$gather.json" || "$tallow" probe maps --preset bunny --k 8 --n 4 --map-size 256 --repeats "$maps_repeats" --gather "$gather" \
     --out "$work/gather_$gather.json"
 done
 

@@ -27,8 +27,20 @@ SCALES = [0.01, 0.1, 1.0]
 BUNNY_CAMERA = ((0.05, 0.13, 0.32), (0.0, 0.045, 0.0))
 
 
+def finished(args):
+    """With TALLOW_RESULTS_RESUME=1, a run whose output is already whole (bench.json or stats.json,
+    both written by rename) is not run again, so an interrupted or partial regeneration resumes."""
+    if os.environ.get("TALLOW_RESULTS_RESUME") != "1" or "--out" not in args:
+        return False
+    out = args[args.index("--out") + 1]
+    return any(os.path.exists(os.path.join(out, f)) for f in ("bench.json", "stats.json"))
+
+
 def tallow(*args):
     cmd = [os.environ.get("TALLOW", "tallow")] + [str(a) for a in args]
+    if finished(cmd):
+        print("results: kept", " ".join(cmd), flush=True)
+        return
     print("results:", " ".join(cmd), flush=True)
     subprocess.run(cmd, check=True)
 
