@@ -198,12 +198,16 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
   renderer.restartAccumulation();
 
   RowResult row;
-  row.frames = std::max(minFrames, settings.sss.frames + 2);
+  // Progressive methods accumulate for their frame count; two converged frames follow.
+  const int accumulated =
+      settings.sss.method == sss::SssMethod::ImageSpace ? settings.imageSpace.frames : settings.sss.frames;
+  row.frames = std::max(minFrames, accumulated + 2);
   double cumulative = 0.0;
   for (int i = 0; i < row.frames; ++i) {
     const auto plan = renderer.planFrame(scene, settings, timeS);
-    const bool accumulating =
-        std::any_of(plan.begin(), plan.end(), [](const sss::PlannedPass& p) { return p.name == "sss.maps"; });
+    const bool accumulating = std::any_of(plan.begin(), plan.end(), [](const sss::PlannedPass& p) {
+      return p.name == "sss.maps" || p.name == "image_space.scatter";
+    });
     const auto start = Clock::now();
     const sss::FrameTimings timings = renderer.render(scene, settings, timeS);
     glFinish();
@@ -342,7 +346,8 @@ Sweep parseSweep(const std::string& text) {
   if (s.values.empty() || std::any_of(s.values.begin(), s.values.end(), [](const std::string& x) { return x.empty(); }))
     throw InputError("--sweep: " + s.key + ": give one or more values, separated by commas");
   if (s.key == "method") throw InputError("--sweep: method: list the methods with --methods");
-  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0;
+  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0 ||
+           s.key.rfind("image_space.", 0) == 0;
   return s;
 }
 

@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   addSceneOptions(*benchCmd, bench.scene);
   benchCmd->add_option("--out", bench.outDir, "output folder")->required();
   benchCmd->add_option("--time", bench.timeS, "animation time [s]");
-  benchCmd->add_option("--methods", bench.methods, "values of `method`, e.g. radiosity-maps,no-cache,albedo (default: all)")->delimiter(',');
+  benchCmd->add_option("--methods", bench.methods, "values of `method`, e.g. radiosity-maps,no-cache,image-space,albedo (default: all)")->delimiter(',');
   benchCmd->add_option("--sweep", bench.sweeps, "key=v1,v2,...: one row per value (repeatable: the Cartesian product)");
   benchCmd->add_option("--frames", bench.frames, "timed frames after the restart (at least 5; at least sss.frames + 2)");
   benchCmd->add_option("--reference", bench.reference, "REF.exr from `tallow reference` (REF_stderr.exr beside it)");

@@ -116,23 +116,27 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     Param p = withDefault(declare("method", "enum", "",
                                   "How translucent objects are shaded: radiosity-maps (the paper's scattered radiosity "
                                   "maps), no-cache (the same gather per camera pixel against the light G-buffers, "
-                                  "as translucent shadow maps; no maps, a new estimate every frame) or albedo "
-                                  "(Lambertian with the object's albedo, no subsurface transport)."),
+                                  "as translucent shadow maps; no maps, a new estimate every frame), image-space "
+                                  "(local subsurface scattering integrated in the camera image by importance "
+                                  "sampling of the standard dipole, Mertens et al. 2003; parameters image_space.*) "
+                                  "or albedo (Lambertian with the object's albedo, no subsurface transport)."),
                           "radiosity-maps");
-    p.choices = {"radiosity-maps", "no-cache", "albedo"};
+    p.choices = {"radiosity-maps", "no-cache", "image-space", "albedo"};
     p.getter = [](const Config& c) {
       switch (c.render.sss.method) {
         case sss::SssMethod::RadiosityMaps: return json("radiosity-maps");
         case sss::SssMethod::NoCache: return json("no-cache");
+        case sss::SssMethod::ImageSpace: return json("image-space");
         case sss::SssMethod::Albedo: break;
       }
       return json("albedo");
     };
     p.setter = [](Config& c, const json& v) {
       const std::string m = v.get<std::string>();
-      c.render.sss.method = m == "albedo"     ? sss::SssMethod::Albedo
-                            : m == "no-cache" ? sss::SssMethod::NoCache
-                                              : sss::SssMethod::RadiosityMaps;
+      c.render.sss.method = m == "albedo"        ? sss::SssMethod::Albedo
+                            : m == "no-cache"    ? sss::SssMethod::NoCache
+                            : m == "image-space" ? sss::SssMethod::ImageSpace
+                                                 : sss::SssMethod::RadiosityMaps;
     };
     r.add(std::move(p));
   }
@@ -295,6 +299,53 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "Face of each VPL cluster's cube shadow map (with vpl.shadows).", 8, 2048),
                               64),
                   [](auto& c) -> auto& { return c.render.vpl.shadowSize; }));
+
+  // --- Local subsurface scattering in image space (issue 8; Mertens et al. 2003, docs/image-space.md) --
+  r.add(bind<int>(withDefault(declare("image_space.samples", "int", "samples",
+                                      "N: samples per translucent pixel and frame on its tangent plane, shared by the "
+                                      "colour bands (each sample serves all three).", 1, sss::kImageSpaceMaxSamples),
+                              16),
+                  [](auto& c) -> auto& { return c.render.imageSpace.samples; }));
+  r.add(bind<float>(withDefault(declare("image_space.uniform_share", "float", "",
+                                        "Share of the N samples drawn uniformly on the disc instead of by importance "
+                                        "sampling of R_d (the paper's combined sampling, for points near a shadow "
+                                        "border); combined by the balance heuristic.", 0, 1),
+                                0.25),
+                    [](auto& c) -> auto& { return c.render.imageSpace.uniformShare; }));
+  r.add(bind<int>(withDefault(declare("image_space.tile", "int", "pixels",
+                                      "T: interleaved sampling with T² sample sets, one per place in a T x T tile of "
+                                      "pixels, combined by a geometry-aware T x T mean (1: one set, no mean).", 1,
+                                      sss::kImageSpaceMaxTile),
+                              4),
+                  [](auto& c) -> auto& { return c.render.imageSpace.tile; }));
+  r.add(bind<float>(withDefault(declare("image_space.radius", "float", "mean free paths 1/sigma_tr",
+                                        "Radius of the disc of x_o's tangent plane that is integrated (the paper's "
+                                        "A'), in mean free paths of the colour band that scatters farthest.", 0.5, 64),
+                                8.0),
+                    [](auto& c) -> auto& { return c.render.imageSpace.radius; }));
+  r.add(bind<int>(withDefault(declare("image_space.frames", "int", "frames",
+                                      "Frames accumulated (new samples each) while camera, light and geometry stay "
+                                      "still; then only the surface pass runs.", 1, 1 << 20),
+                              32),
+                  [](auto& c) -> auto& { return c.render.imageSpace.frames; }));
+  r.add(bind<float>(withDefault(declare("image_space.depth_ratio", "float", "",
+                                        "A sample is rejected as across a depth discontinuity when the surface it "
+                                        "finds in the image lies farther than this times its distance r' from x_o "
+                                        "(at least one pixel) from x_o's tangent plane point.", 0.01, 100),
+                                1.0),
+                    [](auto& c) -> auto& { return c.render.imageSpace.depthRatio; }));
+  r.add(bind<bool>(withDefault(declare("image_space.jacobian", "bool", "",
+                                       "Weight each sample by the surface area per tangent-plane area of the "
+                                       "projection through the camera (the paper's Eq. 8; its GPU version leaves it "
+                                       "out: off)."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.imageSpace.jacobian; }));
+  r.add(bind<bool>(withDefault(declare("image_space.renormalize", "bool", "",
+                                       "Divide B by the sampled share of R_d that fell on x_o's visible surface, i.e. "
+                                       "assume the unseen part is lit alike (the paper divides by the count of valid "
+                                       "samples); off: the integral over the visible surface only."),
+                               false),
+                   [](auto& c) -> auto& { return c.render.imageSpace.renormalize; }));
 
   // --- Scene-bound: no default; the preset gives the value --------------------------------------
   {

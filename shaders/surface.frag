@@ -3,12 +3,14 @@
 // (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
 // L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1) + F_r(ω_o) · L_env(mirror direction): the
 // specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
-// when there is none (render.specular off: no reflection).
+// when there is none (render.specular off: no reflection). With uImageSpace, B comes from the
+// image-space method's accumulation at this pixel (image_space/result.glsl).
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.glsl"
 #include "sss/algorithm1.glsl"
 #include "sss/gather.glsl"
 #include "sss/vpl_receiver.glsl"
+#include "image_space/result.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -21,6 +23,7 @@ uniform vec3 uCameraForward;
 uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps (or, with uNoCache, the gather)
 uniform int uNoCache;      // 1: the gather per pixel against the light G-buffers, no maps
 uniform int uSlot;         // the translucent slot of this object (no-cache)
+uniform int uImageSpace;   // 1: B from the image-space method (image_space/result.glsl)
 uniform int uSpecular;     // render.specular
 uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
 uniform sampler2D uEnvMap; // lat-long radiance (sss/environment_lights.h conventions)
@@ -52,7 +55,8 @@ void main() {
   bool backFacing = dot(n, toCamera) < 0.0;
   if (uTranslucent != 0) {
     float seenBy = 1.0;
-    vec3 b = uNoCache != 0
+    vec3 b = uImageSpace != 0 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
+             : uNoCache != 0
                  ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
                  : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
     vec3 v = normalize(toCamera);

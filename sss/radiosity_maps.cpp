@@ -183,7 +183,7 @@ bool RadiosityMaps::applies(const Scene& scene, const RenderSettings& settings) 
 }
 
 bool RadiosityMaps::needsLightGBuffers(const Scene& scene, const RenderSettings& settings) {
-  return settings.sss.method != SssMethod::Albedo &&
+  return (settings.sss.method == SssMethod::RadiosityMaps || settings.sss.method == SssMethod::NoCache) &&
          std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.translucent; });
 }
 

@@ -11,6 +11,7 @@ enum class SssMethod {
   RadiosityMaps,  ///< scattered radiosity maps (Dal Corso et al. 2017, issue 5)
   Albedo,         ///< no subsurface transport: Lambertian with the object's albedo (a baseline)
   NoCache,        ///< the gather per camera pixel against the light G-buffers, no maps (paper Fig. 11)
+  ImageSpace,     ///< local subsurface scattering in image space (Mertens et al. 2003; issue 8, docs/image-space.md)
 };
 
 /// The scattered radiosity maps of Dal Corso et al. (sss.* parameters).
@@ -62,6 +63,23 @@ struct VplSettings {
   int shadowSize = 64;           ///< vpl.shadow_size [texels]: face of each cluster's cube shadow map
 };
 
+/// Upper bounds of image_space.tile and image_space.samples (the parameters' ranges; the sample
+/// pattern's size grows with both).
+inline constexpr int kImageSpaceMaxTile = 8;
+inline constexpr int kImageSpaceMaxSamples = 1024;
+
+/// Local subsurface scattering in image space (image_space.*; docs/image-space.md).
+struct ImageSpaceSettings {
+  int samples = 16;            ///< image_space.samples: N per pixel and frame, shared by the colour bands
+  float uniformShare = 0.25f;  ///< image_space.uniform_share: of N, uniform on the disc (combined sampling)
+  int tile = 4;                ///< image_space.tile: T, interleaved sampling with T² sample sets
+  float radius = 8.0f;         ///< image_space.radius [mean free paths 1/σ_tr of the longest band]
+  int frames = 32;             ///< image_space.frames: accumulated frames while nothing changes
+  float depthRatio = 1.0f;     ///< image_space.depth_ratio: rejection of samples off x_o's tangent plane
+  bool jacobian = true;        ///< image_space.jacobian: dA_p/dA_p' of the tangent plane's projection
+  bool renormalize = false;    ///< image_space.renormalize: divide by the sampled share of R_d on valid surface
+};
+
 struct RenderSettings {
   int width = 0;              ///< render.width [px]
   int height = 0;             ///< render.height [px]
@@ -74,6 +92,7 @@ struct RenderSettings {
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;
   VplSettings vpl;
+  ImageSpaceSettings imageSpace;
 };
 
 }  // namespace tallow::sss

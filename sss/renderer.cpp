@@ -33,6 +33,7 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
   RadiosityMaps::checkLimits(scene, settings);
   VirtualPointLights::checkLimits(scene, settings);
+  ImageSpaceSss::checkLimits(scene, settings);
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
@@ -79,11 +80,17 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
                                       " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
                                       " dipole), accumulated until " + std::to_string(s.frames) + " frames"});
   }
+  const bool imageSpace = ImageSpaceSss::applies(scene, settings);
+  if (imageSpace)
+    for (const char* name : {"image_space.gbuffer", "image_space.scatter", "image_space.combine"})
+      passes.push_back({name, ImageSpaceSss::describe(scene, settings, name)});
   if (VirtualPointLights::applies(scene, settings))
     passes.push_back({"vpl", VirtualPointLights::describe(scene, settings)});
   passes.push_back({"surface", std::to_string(scene.objects.size()) + " object(s): " +
                                    (maps      ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
                                                 "ones Lambertian"
+                                    : imageSpace ? "translucent ones from the image-space estimate at their pixel (L = F_t/pi "
+                                                   "B, standard dipole), opaque ones Lambertian"
                                     : noCache ? "translucent ones by the gather per pixel against the light G-buffers "
                                                 "(no-cache: " + std::to_string(settings.sss.samples) +
                                                     " samples per pixel and band, a new estimate every frame), opaque "
@@ -107,6 +114,14 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
   // Converged: nothing the maps depend on changed and F reached sss.frames; only step 3 runs.
   if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapStateKey, settings))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sss.", 0) == 0; });
+  // The image-space accumulation: its G-buffer once per accumulation, nothing once it is complete.
+  if (imageSpace_ && ImageSpaceSss::applies(scene, settings)) {
+    const std::string imageSpaceKey = ImageSpaceSss::stateKey(mapStateKey, scene, settings);
+    if (!imageSpace_->needsUpdate(imageSpaceKey, settings))
+      std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("image_space.", 0) == 0; });
+    else if (!imageSpace_->needsGBuffer(imageSpaceKey))
+      std::erase_if(passes, [](const PlannedPass& p) { return p.name == "image_space.gbuffer"; });
+  }
   // The VPLs read the maps and the geometry: nothing to redo while both hold, unless the directions
   // change every frame.
   if (vpls_ && vpls_->count() == settings.vpl.count && settings.vpl.stable && fields_ &&
@@ -161,6 +176,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   timer_.beginFrame();
   shadows_.reset(scene.lights.size());
   const std::string key = mapKey(scene, settings, timeS);  // once: the plan and the G-buffer pass share it
+  const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
   for (const PlannedPass& pass : planFrame(scene, settings, timeS, key)) {
     gpu::GpuScope scope(timer_, pass.name);
     if (pass.name == "field.sample") {
@@ -181,6 +197,14 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       if (!vpls_) vpls_ = std::make_unique<VirtualPointLights>(shaders_);
       vpls_->render(scene, settings, geometry_, *maps_, vplFrame_++);
       vplKey_ = vplKey(settings, key);
+    } else if (pass.name == "image_space.gbuffer") {
+      if (!imageSpace_) imageSpace_ = std::make_unique<ImageSpaceSss>(shaders_);
+      imageSpace_->renderGBuffer(scene, settings, geometry_, cameraView(scene.camera, aspect, geometry_.worldBounds()),
+                                 shadows_, ImageSpaceSss::stateKey(key, scene, settings));
+    } else if (pass.name == "image_space.scatter") {
+      imageSpace_->scatter(scene, settings, cameraView(scene.camera, aspect, geometry_.worldBounds()));
+    } else if (pass.name == "image_space.combine") {
+      imageSpace_->combine(settings);
     } else if (pass.name == "surface") {
       const glm::vec4 clear(scene.background, 1.0f);
       glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &clear.x);
@@ -188,7 +212,6 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       glClearNamedFramebufferfv(target_.id(), GL_COLOR, 1, &none.x);
       const float one = 1.0f;
       glClearNamedFramebufferfv(target_.id(), GL_DEPTH, 0, &one);
-      const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
       const CameraView camera = cameraView(scene.camera, aspect, geometry_.worldBounds());
       const RadiosityMaps* maps = maps_ && RadiosityMaps::applies(scene, settings) ? maps_.get() : nullptr;
       const RadiosityMaps* noCache =
@@ -196,8 +219,10 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
               ? maps_.get()
               : nullptr;
       const VirtualPointLights* vpls = vpls_ && VirtualPointLights::applies(scene, settings) ? vpls_.get() : nullptr;
-      surface_.render(scene, settings, geometry_, camera, shadows_, maps, noCache, vpls, noCacheFrame_++, target_,
-                      settings.width, settings.height);
+      const ImageSpaceSss* imageSpace =
+          imageSpace_ && ImageSpaceSss::applies(scene, settings) ? imageSpace_.get() : nullptr;
+      surface_.render(scene, settings, geometry_, camera, shadows_, maps, noCache, vpls, imageSpace, noCacheFrame_++,
+                      target_, settings.width, settings.height);
     }
   }
   FrameTimings t;
@@ -232,7 +257,7 @@ std::vector<std::uint8_t> Renderer::receiverMask() const {
 
 std::size_t Renderer::gpuBytes() const {
   return radiance_.bytes() + coverage_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
-         (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0);
+         (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0) + (imageSpace_ ? imageSpace_->bytes() : 0);
 }
 
 }  // namespace tallow::sss

@@ -13,6 +13,7 @@
 #include "gpu/shader_library.h"
 #include "sss/display_pass.h"
 #include "sss/field_objects.h"
+#include "sss/image_space.h"
 #include "sss/radiosity_maps.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
@@ -75,11 +76,14 @@ class Renderer {
   /// The radiosity maps, once a frame has used them (null before, or with another method).
   const RadiosityMaps* radiosityMaps() const { return maps_.get(); }
   const SceneGeometry& geometry() const { return geometry_; }
+  /// The image-space method's passes, once a frame has used them (null before, or with another method).
+  const ImageSpaceSss* imageSpace() const { return imageSpace_.get(); }
   /// The VPLs of the last frame that had them (null before, or when the scene needs none).
   const VirtualPointLights* virtualPointLights() const { return vpls_.get(); }
   /// Forgets what the progressive methods have accumulated, keeping every allocation: the next
   /// frame restarts the radiosity maps (as a change of their state key does) and the no-cache
-  /// seeds. For `tallow bench`, which times the frames after a warm-up frame.
+  /// seeds and the image-space accumulation. For `tallow bench`, which times the frames after a
+  /// warm-up frame.
   void restartAccumulation();
 
  private:
@@ -98,6 +102,7 @@ class Renderer {
   const gpu::ShaderLibrary& shaders_;
   std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
   std::unique_ptr<VirtualPointLights> vpls_;  ///< created on the first frame that needs them
+  std::unique_ptr<ImageSpaceSss> imageSpace_;  ///< created on the first frame that needs it
   std::string vplKey_;                   ///< vplKey() of the last VPL pass
   int vplFrame_ = 0;                     ///< frames with VPLs: seeds the directions when not stable
   int noCacheFrame_ = 0;                 ///< seeds of the no-cache gather, one estimate per frame

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gpu/hdr_io.h"
+#include "sss/light_uniforms.h"
 
 namespace tallow::sss {
 namespace {
@@ -14,6 +15,7 @@ constexpr GLuint kMapDepthUnit = 3;
 constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
 constexpr GLuint kVplShadowUnit = 11;
+constexpr GLuint kImageSpaceFirstUnit = 12;  // the image-space accumulation: 12, 13
 
 }  // namespace
 
@@ -33,60 +35,15 @@ void SurfacePass::setEnvironment(const Environment& environment) {
 
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                          const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-                         const RadiosityMaps* noCache, const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width,
-                         int height) {
-  // Lights into the shader's arrays.
-  std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
-  std::vector<int> dirLayer, pointLayer;
-  std::vector<glm::mat4> dirMatrix;
-  std::vector<float> dirTexel, pointRange;
-  const ShadowLayers& layers = shadows.layers();
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    const Light& l = scene.lights[i];
-    if (l.kind == LightKind::Directional) {
-      dirDirection.push_back(glm::normalize(l.direction));
-      dirIrradiance.push_back(l.intensity);
-      const bool shadowed = i < layers.directionalLayer.size() && layers.directionalLayer[i] >= 0;
-      dirLayer.push_back(shadowed ? layers.directionalLayer[i] : -1);
-      dirMatrix.push_back(shadowed ? layers.directionalMatrix[i] : glm::mat4(1.0f));
-      dirTexel.push_back(shadowed ? layers.directionalTexel[i] : 0.0f);
-    } else {
-      pointPosition.push_back(l.position);
-      pointIntensity.push_back(l.intensity);
-      const bool shadowed = i < layers.pointCube.size() && layers.pointCube[i] >= 0;
-      pointLayer.push_back(shadowed ? layers.pointCube[i] : -1);
-      pointRange.push_back(shadowed ? layers.pointRange[i] : 1.0f);
-    }
-  }
+                         const RadiosityMaps* noCache, const VirtualPointLights* vpls, const ImageSpaceSss* imageSpace,
+                         int frame, const gpu::Framebuffer& target, int width, int height) {
   auto& p = program_;
-  p.set("uDirCount", static_cast<int>(dirDirection.size()));
-  p.set("uPointCount", static_cast<int>(pointPosition.size()));
-  if (!dirDirection.empty()) {
-    const int n = static_cast<int>(dirDirection.size());
-    p.set("uDirDirection", dirDirection.data(), n);
-    p.set("uDirIrradiance", dirIrradiance.data(), n);
-    p.set("uDirShadowMatrix", dirMatrix.data(), n);
-    glProgramUniform1iv(p.id(), p.location("uDirShadowLayer"), n, dirLayer.data());
-    glProgramUniform1fv(p.id(), p.location("uDirShadowTexel"), n, dirTexel.data());
-  }
-  if (!pointPosition.empty()) {
-    const int n = static_cast<int>(pointPosition.size());
-    p.set("uPointPosition", pointPosition.data(), n);
-    p.set("uPointIntensity", pointIntensity.data(), n);
-    glProgramUniform1iv(p.id(), p.location("uPointShadowLayer"), n, pointLayer.data());
-    glProgramUniform1fv(p.id(), p.location("uPointShadowRange"), n, pointRange.data());
-  }
-  p.set("uPointShadowTexelAngle", layers.pointTexelAngle);
-  p.set("uShadowBias", settings.shadowBias);
-  p.set("uPcfRadius", settings.pcfRadius);
-  p.set("uDirShadow", static_cast<int>(kDirectionalShadowUnit));
-  p.set("uPointShadow", static_cast<int>(kPointShadowUnit));
+  setLightUniforms(p, scene, settings, shadows, kDirectionalShadowUnit, kPointShadowUnit);
   p.set("uAmbient", scene.ambient);
   p.set("uViewProjection", camera.viewProjection);
   p.set("uCameraPosition", camera.position);
   p.set("uCameraForward", camera.forward);
   p.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
-  shadows.bind(kDirectionalShadowUnit, kPointShadowUnit);
   p.set("uSpecular", settings.specular ? 1 : 0);
   p.set("uEnvironment", environment_.id() ? 1 : 0);
   p.set("uEnvMap", static_cast<int>(kEnvironmentUnit));
@@ -109,6 +66,8 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uMapCount", 0);
   }
   VirtualPointLights::setReceiverUniforms(p, vpls, kVplShadowUnit);
+  p.set("uImageSpace", imageSpace ? 1 : 0);
+  ImageSpaceSss::setSurfaceUniforms(p, imageSpace, settings, kImageSpaceFirstUnit);
 
   target.bind();
   glViewport(0, 0, width, height);
@@ -122,7 +81,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
-    p.set("uTranslucent", (maps || noCache) && object.translucent ? 1 : 0);
+    p.set("uTranslucent", (maps || noCache || imageSpace) && object.translucent ? 1 : 0);
     if (noCache && object.translucent) p.set("uSlot", noCache->slots()[static_cast<std::size_t>(item.objectIndex)]);
     p.set("uObjectEta", object.material.eta);
     item.draw();

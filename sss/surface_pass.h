@@ -3,6 +3,7 @@
 // ambient sky, into a linear HDR target with depth.
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
+#include "sss/image_space.h"
 #include "sss/radiosity_maps.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
@@ -24,11 +25,13 @@ class SurfacePass {
   void setEnvironment(const Environment& environment);
   /// Draws into `target` (already sized and cleared by the caller). With `maps` (not null),
   /// translucent objects are shaded from the scattered radiosity maps (Algorithm 1, Eq. 5); with
-  /// `noCache` (not null: its light G-buffers), by the gather per pixel (seeds from `frame`). With
-  /// `vpls` (not null), opaque objects also receive the VPLs' emergent light.
+  /// `noCache` (not null: its light G-buffers), by the gather per pixel (seeds from `frame`); with
+  /// `imageSpace` (not null), from its accumulation at the pixel. With `vpls` (not null), opaque
+  /// objects also receive the VPLs' emergent light.
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
               const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-              const RadiosityMaps* noCache, const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width, int height);
+              const RadiosityMaps* noCache, const VirtualPointLights* vpls, const ImageSpaceSss* imageSpace, int frame,
+              const gpu::Framebuffer& target, int width, int height);
 
  private:
   gpu::Program program_;

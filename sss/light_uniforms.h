@@ -1,0 +1,16 @@
+#pragma once
+// The scene's lights and their shadow maps as shaders/common/lights.glsl reads them, for every
+// pass that lights surfaces with it (the surface pass, the image-space G-buffer).
+#include "gpu/program.h"
+#include "sss/render_settings.h"
+#include "sss/scene.h"
+#include "sss/shadow_pass.h"
+
+namespace tallow::sss {
+
+/// Sets lights.glsl's uniforms on `program` (light arrays, shadow layers and matrices, PCF radius,
+/// bias) and binds the shadow maps to `directionalShadowUnit` and `pointShadowUnit`.
+void setLightUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings,
+                      const ShadowPass& shadows, GLuint directionalShadowUnit, GLuint pointShadowUnit);
+
+}  // namespace tallow::sss
