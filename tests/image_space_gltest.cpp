@@ -364,3 +364,42 @@ TEST(ImageSpace, ExplainListsThePassesAndStatsTimeThem) {
 
 }  // namespace
 }  // namespace tallow
+
+namespace tallow {
+namespace {
+
+TEST(ImageSpace, BenchTimesItsAccumulationAndMeasuresItsError) {
+  // tallow bench with image-space beside albedo on the slab (8x6): the image-space row accumulates
+  // image_space.frames = 3 frames, then shows 2 converged ones (5 in all); its scatter pass is timed;
+  // and the scattered light brings it closer to the reference than albedo, which has none.
+  test::TempDir dir;
+  const auto ref = dir.path() / "ref.exr";
+  const auto r0 = test::runTallow({"reference", "--preset", "slab", "--size", "8x6", "--spp", "2", "--out", ref.string()});
+  ASSERT_EQ(r0.exitCode, 0) << r0.err;
+  const auto out = dir.path() / "bench";
+  const auto r = test::runTallow({"bench", "--preset", "slab", "--size", "8x6", "--methods", "image-space,albedo", "--set",
+                                  "image_space.frames=3", "--set", "render.shadow_map_size=256", "--sweep",
+                                  "image_space.samples=8,16", "--reference", ref.string(), "--out", out.string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(out / "bench.json");
+  const auto bench = nlohmann::json::parse(in);
+  double imageSpaceError = 0.0, albedoError = 0.0;
+  int imageSpaceRows = 0;
+  for (const auto& row : bench["rows"]) {
+    if (row["method"] == "image-space") {
+      ++imageSpaceRows;
+      EXPECT_EQ(row["frames"], 5);
+      EXPECT_EQ(row["converged_frames"], 2);
+      EXPECT_TRUE(row["median_accumulating_wall_ms"].is_number());
+      EXPECT_TRUE(row["gpu_ms_median"]["image_space.scatter"].is_number());
+      imageSpaceError = std::max(imageSpaceError, row["last_rel_rmse"].get<double>());
+    } else {
+      albedoError = row["last_rel_rmse"].get<double>();
+    }
+  }
+  EXPECT_EQ(imageSpaceRows, 2) << "image_space.* sweeps are method knobs sharing the one reference";
+  EXPECT_LT(imageSpaceError, albedoError);
+}
+
+}  // namespace
+}  // namespace tallow
