@@ -1,8 +1,5 @@
 #include "sss/surface_pass.h"
 
-#include <algorithm>
-#include <vector>
-
 #include "gpu/hdr_io.h"
 #include "sss/light_uniforms.h"
 
