@@ -9,6 +9,7 @@
 #include "sss/algorithm1.glsl"
 #include "sss/gather.glsl"
 #include "sss/vpl_receiver.glsl"
+#include "sslpv/lookup.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -54,7 +55,8 @@ void main() {
     float seenBy = 1.0;
     vec3 b = uNoCache != 0
                  ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
-                 : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
+             : uSslpv != 0 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
+                           : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
     vec3 v = normalize(toCamera);
     vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);

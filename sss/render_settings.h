@@ -11,6 +11,7 @@ enum class SssMethod {
   RadiosityMaps,  ///< scattered radiosity maps (Dal Corso et al. 2017, issue 5)
   Albedo,         ///< no subsurface transport: Lambertian with the object's albedo (a baseline)
   NoCache,        ///< the gather per camera pixel against the light G-buffers, no maps (paper Fig. 11)
+  Sslpv,          ///< subsurface light propagation volumes (Børlum et al. 2011, docs/sslpv.md)
 };
 
 /// The scattered radiosity maps of Dal Corso et al. (sss.* parameters).
@@ -62,6 +63,21 @@ struct VplSettings {
   int shadowSize = 64;           ///< vpl.shadow_size [texels]: face of each cluster's cube shadow map
 };
 
+/// Which flux of a cell's point light SSLPV's area light carries out of the surface (sslpv.exitance).
+enum class SslpvExitance {
+  Hemisphere,  ///< all of the hemisphere about the normal (the paper's Eq. 5)
+  Face,        ///< the cap of one cube face's solid angle, 2π/3 sr (what the propagation passes on)
+};
+
+/// Subsurface light propagation volumes (Børlum et al. 2011; sslpv.*).
+struct SslpvSettings {
+  int grid = 32;         ///< sslpv.grid: LPV cells per axis
+  int steps = 32;        ///< sslpv.steps: propagation steps
+  int skip = 2;          ///< sslpv.skip: first steps left out of the accumulation grid
+  int injectSize = 256;  ///< sslpv.inject_size [texels]: light G-buffers injected from
+  SslpvExitance exitance = SslpvExitance::Hemisphere;  ///< sslpv.exitance
+};
+
 struct RenderSettings {
   int width = 0;              ///< render.width [px]
   int height = 0;             ///< render.height [px]
@@ -74,6 +90,7 @@ struct RenderSettings {
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;
   VplSettings vpl;
+  SslpvSettings sslpv;
 };
 
 }  // namespace tallow::sss

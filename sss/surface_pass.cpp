@@ -14,6 +14,7 @@ constexpr GLuint kMapDepthUnit = 3;
 constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
 constexpr GLuint kVplShadowUnit = 11;
+constexpr GLuint kSslpvFirstUnit = 12;  // SSLPV's accumulation grids and medium: 12 … 15
 
 }  // namespace
 
@@ -34,7 +35,7 @@ void SurfacePass::setEnvironment(const Environment& environment) {
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                          const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
                          const RadiosityMaps* noCache, const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width,
-                         int height) {
+                         int height, const Sslpv* sslpv) {
   // Lights into the shader's arrays.
   std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
   std::vector<int> dirLayer, pointLayer;
@@ -109,6 +110,8 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uMapCount", 0);
   }
   VirtualPointLights::setReceiverUniforms(p, vpls, kVplShadowUnit);
+  if (sslpv) sslpv->setLookupUniforms(p, settings, kSslpvFirstUnit);
+  else Sslpv::setLookupOff(p, kSslpvFirstUnit);
 
   target.bind();
   glViewport(0, 0, width, height);
@@ -122,7 +125,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
-    p.set("uTranslucent", (maps || noCache) && object.translucent ? 1 : 0);
+    p.set("uTranslucent", (maps || noCache || sslpv) && object.translucent ? 1 : 0);
     if (noCache && object.translucent) p.set("uSlot", noCache->slots()[static_cast<std::size_t>(item.objectIndex)]);
     p.set("uObjectEta", object.material.eta);
     item.draw();

@@ -7,6 +7,7 @@
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
 #include "sss/shadow_pass.h"
+#include "sss/sslpv.h"
 #include "sss/virtual_point_lights.h"
 #include "sss/view_setup.h"
 
@@ -25,10 +26,12 @@ class SurfacePass {
   /// Draws into `target` (already sized and cleared by the caller). With `maps` (not null),
   /// translucent objects are shaded from the scattered radiosity maps (Algorithm 1, Eq. 5); with
   /// `noCache` (not null: its light G-buffers), by the gather per pixel (seeds from `frame`). With
-  /// `vpls` (not null), opaque objects also receive the VPLs' emergent light.
+  /// `vpls` (not null), opaque objects also receive the VPLs' emergent light. With `sslpv` (not
+  /// null), translucent objects are shaded from its accumulation grid (Eqs. 6–7).
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
               const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-              const RadiosityMaps* noCache, const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width, int height);
+              const RadiosityMaps* noCache, const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width, int height,
+              const Sslpv* sslpv = nullptr);
 
  private:
   gpu::Program program_;
