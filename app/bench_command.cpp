@@ -342,7 +342,8 @@ Sweep parseSweep(const std::string& text) {
   if (s.values.empty() || std::any_of(s.values.begin(), s.values.end(), [](const std::string& x) { return x.empty(); }))
     throw InputError("--sweep: " + s.key + ": give one or more values, separated by commas");
   if (s.key == "method") throw InputError("--sweep: method: list the methods with --methods");
-  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0;
+  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0 ||
+           s.key.rfind("sslpv.", 0) == 0;
   return s;
 }
 
