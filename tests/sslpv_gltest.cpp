@@ -19,6 +19,7 @@
 #include "support/dipole_totals.h"
 #include "support/render_support.h"
 #include "support/run_tallow.h"
+#include "support/slab_recursion.h"
 #include "support/temp_dir.h"
 
 namespace tallow {
@@ -125,45 +126,84 @@ TEST(Sslpv, PropagationConservesFluxUpToWhatLeavesTheGrid) {
     for (int k = 0; k < 4; ++k) EXPECT_NEAR(acc[i][k], step2[i][k] + step3[i][k], 1e-5f) << i;
 }
 
+// --- Injection -------------------------------------------------------------------------------------
+
+/// Total flux Σ 2√π c00 per band of the grid right after injection into the slab of `s`.
+glm::dvec3 injectedFlux(PresetSession& s, int injectSize) {
+  const gpu::ShaderLibrary shaders;
+  sss::RenderSettings settings = s.settings();
+  settings.sss.lightMapSize = injectSize;
+  sss::SceneGeometry geometry(s.scene());
+  sss::RadiosityMaps gbuffers(shaders);
+  gbuffers.renderLightGBuffers(s.scene(), settings, geometry, "injection test");
+  geometry::Aabb box;
+  box.extend({-0.1f, 0.0f, -0.1f});
+  box.extend({0.1f, 0.05f, 0.1f});
+  const sss::SslpvGrid grid = sss::fitSslpvGrid(box, 32);
+  sss::SslpvPropagation propagation(shaders);
+  propagation.resize(grid.size);
+  propagation.clear();
+  sss::SslpvInjection(shaders).inject(s.scene(), settings, gbuffers, grid, propagation.current());
+  glm::dvec3 flux(0.0);
+  for (int b = 0; b < 3; ++b)
+    for (const glm::vec4& c : propagation.download(propagation.current()[static_cast<std::size_t>(b)]))
+      flux[b] += 2.0 * std::sqrt(kPi) * c[0];
+  return flux;
+}
+
+/// Unpolarised Fresnel transmittance from outside at incidence cos θ, written out here.
+double fresnelT(double cosTheta, double eta) {
+  const double sinT2 = (1.0 - cosTheta * cosTheta) / (eta * eta), cosT = std::sqrt(1.0 - sinT2);
+  const double rs = (cosTheta - eta * cosT) / (cosTheta + eta * cosT);
+  const double rp = (eta * cosTheta - cosT) / (eta * cosTheta + cosT);
+  return 1.0 - 0.5 * (rs * rs + rp * rp);
+}
+
+TEST(Sslpv, InjectionCarriesTheTransmittedFluxOfDirectionalAndPointLights) {
+  // §3.1 on the slab's top face (0.2 × 0.2 m at y = 0.05). Directional light straight down,
+  // E = 1 W/m²: Σ_p T Φ_p = F_t(0°) E A. A point light of 1 W/sr 0.1 m above the face's centre:
+  // Σ_p T Φ_p = ∫_face F_t(θ) cos θ / r² dA (quadrature here, 1000 × 1000). Texels whose centre
+  // falls on the face stand for it: the edge texels make ~texel × perimeter / area ≈ 0.3% (1024²,
+  // directional) and the cube's texel solid-angle approximation ~10⁻⁴; 0.5% covers both.
+  PresetSession s("slab", {"render.width=16", "render.height=16", "method=sslpv"});
+  const double eta = s.scene().objects[0].material.eta;
+  const glm::dvec3 directional = injectedFlux(s, 1024);
+  const double expectedDirectional = test::normalTransmittance(eta) * 1.0 * 0.2 * 0.2;
+  sss::Light& light = s.scene().lights[0];
+  light.kind = sss::LightKind::Point;
+  light.position = {0.0f, 0.15f, 0.0f};
+  light.intensity = glm::vec3(1.0f);
+  const glm::dvec3 point = injectedFlux(s, 512);
+  double expectedPoint = 0.0;
+  constexpr int n = 1000;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -0.1 + 0.2 * (i + 0.5) / n, z = -0.1 + 0.2 * (j + 0.5) / n, h = 0.1;
+      const double r2 = x * x + z * z + h * h, cosTheta = h / std::sqrt(r2);
+      expectedPoint += fresnelT(cosTheta, eta) * cosTheta / r2 * (0.04 / (n * n));
+    }
+  for (int b = 0; b < 3; ++b) {
+    std::printf("[ sslpv ] injected band %d: directional %.6f W (expected %.6f), point %.6f W (expected %.6f)\n", b,
+                directional[b], expectedDirectional, point[b], expectedPoint);
+    EXPECT_NEAR(directional[b] / expectedDirectional, 1.0, 0.005);
+    EXPECT_NEAR(point[b] / expectedPoint, 1.0, 0.005);
+  }
+}
+
 // --- The analytic slab -----------------------------------------------------------------------------
 
-/// SSLPV on the slab written independently of the GPU passes: the slab is uniform across x and z,
-/// so every cell of a layer holds the same coefficients and one step is, per layer i,
-///   c'_i = Σ_{±x,±z} M_s a(c_i) + M_{+y} a(c_{i+1}) + M_{−y} a(c_{i−1}),   a(c) = scatter(e^{−σ_t ΔX} c),
-/// with no cells above the top layer or below the bottom. Injection: every cell of the top layer
-/// receives F_t(0°) E ΔX² in a cosine lobe straight down. Returns the radiance the camera sees,
-/// F_t(0°)/π · π L_i (Eq. 7 about +y), per band.
+/// The camera's radiance F_t(0°)/π · π L_i (Eq. 7 about +y) on the slab by the test's laterally
+/// reduced recursion (support/slab_recursion.h), per band.
 glm::dvec3 slabRecursion(const sss::Material& m, double eta, double cellM, int layers, int steps, int skip,
                          double capCos) {
-  const auto M = sss::sslpvPropagationMatrices();
-  const double ft = test::normalTransmittance(eta), cellMm = cellM * 1000.0;
+  const double ft = test::normalTransmittance(eta);
   glm::dvec3 out(0.0);
   for (int band = 0; band < 3; ++band) {
-    const float sa = m.sigma_a[band], ss = m.sigma_s[band], g = m.g[band];
-    const float st = sh::sslpvGridExtinction(sa, ss, g, static_cast<float>(cellMm));
-    const float sp = sh::sslpvScatteringFraction(ss, static_cast<float>(cellMm));
-    std::vector<glm::dvec4> c(static_cast<std::size_t>(layers), glm::dvec4(0.0)), acc = c;
-    c.back() = ft * cellM * cellM * glm::dvec4(sh::sslpvCosineLobe(glm::vec3(0, -1, 0)));
-    for (int step = 1; step <= steps; ++step) {
-      std::vector<glm::dvec4> next(c.size(), glm::dvec4(0.0));
-      for (int i = 0; i < layers; ++i) {
-        const auto leaving = [&](int j) {
-          return glm::dvec4(sh::sslpvAttenuateAndScatter(glm::vec4(c[static_cast<std::size_t>(j)]), st, sp, g,
-                                                         static_cast<float>(cellMm)));
-        };
-        glm::dvec4 sum(0.0);
-        for (int s : {0, 1, 4, 5}) sum += glm::dmat4(M[s]) * leaving(i);  // ±x, ±z: the same layer
-        if (i + 1 < layers) sum += glm::dmat4(M[2]) * leaving(i + 1);  // source at +y
-        if (i > 0) sum += glm::dmat4(M[3]) * leaving(i - 1);           // source at −y
-        next[static_cast<std::size_t>(i)] = sum;
-      }
-      c = next;
-      if (step > skip)
-        for (int i = 0; i < layers; ++i) acc[static_cast<std::size_t>(i)] += c[static_cast<std::size_t>(i)];
-    }
-    const glm::vec4 cn = sh::sslpvRotateToNormal(glm::vec4(acc.back()), glm::vec3(0, 1, 0));
-    const double li = sh::sslpvAreaLightRadiance(cn, static_cast<float>(cellM * cellM), static_cast<float>(capCos));
-    out[band] = ft / kPi * kPi * li;
+    const test::SlabRecursion r = test::slabRecursion(m.sigma_a[band], m.sigma_s[band], m.g[band],
+                                                      ft * cellM * cellM, cellM * 1000.0, layers, steps, skip);
+    const glm::vec4 cn = sh::sslpvRotateToNormal(glm::vec4(r.top), glm::vec3(0, 1, 0));
+    out[band] = ft / kPi * kPi *
+                sh::sslpvAreaLightRadiance(cn, static_cast<float>(cellM * cellM), static_cast<float>(capCos));
   }
   return out;
 }

@@ -5,10 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include "sss/material.h"
+
 #include <cmath>
 #include <functional>
 #include <random>
 #include <vector>
+
+#include "support/dipole_totals.h"
+#include "support/slab_recursion.h"
 
 namespace tallow::sss {
 namespace {
@@ -303,6 +308,47 @@ TEST(SslpvPropagationMatrices, PolygonProjectionMatchesQuadrature) {
       }
     expectNear4(sslpvPolygonProjection(eye, corners, 4), numeric, 2e-5 * (1.0 + std::abs(numeric[0])), "polygon");
   }
+}
+
+TEST(SslpvSlab, LeavingFluxConvergesToTheDipoleWhileEq5CountsItNearlyThreeTimes) {
+  // The marble slab (5 cm, normal incidence, E = 1) by the laterally reduced recursion, skip 0 and
+  // enough steps to empty the grid, at four cell sizes. Two readings of the top layer:
+  //  * the flux it passes to the vacuum above (what leaves the slab), per unit area;
+  //  * Eq. 7's hemisphere (the paper's Eq. 5) times π: its estimate of the same radiosity.
+  // The walk has no Fresnel reflection inside the surface (light that reaches it leaves), so its
+  // limit is the dipole with A = 1 (η = 1 in Jensen's fit), not η = 1.5's A = 3.25.
+  const sss::Material marble{"Marble", "", glm::vec3(2.19f, 2.62f, 3.0f), glm::vec3(0.0021f, 0.0041f, 0.0071f),
+                             glm::vec3(0.0f), 1.5f};
+  const double ft = test::normalTransmittance(1.5);
+  double previousError = 1e9, previousOvercount = 0.0;
+  for (const double cellMm : {6.25, 3.125, 1.5625, 0.78125}) {
+    const int layers = static_cast<int>(std::lround(50.0 / cellMm));
+    const double area = cellMm * cellMm * 1e-6;  // m²
+    double worstError = 0.0, overcount = 0.0;
+    for (int b = 0; b < 3; ++b) {
+      const auto r = test::slabRecursion(marble.sigma_a[b], marble.sigma_s[b], 0.0f, ft * area, cellMm, layers, 8000, 0);
+      const double leaving = r.escaped / area;
+      const double eq5 = kPi * sh::sslpvAreaLightRadiance(sh::sslpvRotateToNormal(glm::vec4(r.top), glm::vec3(0, 1, 0)),
+                                                          static_cast<float>(area), 0.0f);
+      const double dipole = ft * test::jensenTotalRd(marble.sigma_a[b], marble.sigma_s[b], 0.0, 1.5);
+      const double dipoleA1 = ft * test::jensenTotalRd(marble.sigma_a[b], marble.sigma_s[b], 0.0, 1.0);
+      std::printf("[ sslpv ] slab %.3f mm band %d: leaving / F_t E R_d = %.3f (A = 1: %.3f), Eq. 5 / F_t E R_d = %.3f\n",
+                  cellMm, b, leaving / dipole, leaving / dipoleA1, eq5 / dipole);
+      worstError = std::max(worstError, std::abs(leaving / dipoleA1 - 1.0));
+      overcount = std::max(overcount, eq5 / leaving);
+    }
+    // Each halving of the cell cuts the leaving flux's worst error by a third or more (0.76, 0.48,
+    // 0.23, 0.065, the blue band): it converges.
+    EXPECT_LT(worstError, 0.7 * previousError) << cellMm;
+    EXPECT_GT(overcount, previousOvercount) << cellMm;  // while Eq. 5 counts more and more of it
+    previousError = worstError;
+    previousOvercount = overcount;
+  }
+  // At 0.78 mm (σ_tr ΔX ≤ 0.2): within 8% of the A = 1 dipole (2, 3.5 and 6.5% in r, g, b, still
+  // converging), and Eq. 5 above 2.5 times it (an isotropic cell sends 1/2 of its flux into the
+  // hemisphere but 1/6 through its face).
+  EXPECT_LT(previousError, 0.08);
+  EXPECT_GT(previousOvercount, 2.5);
 }
 
 TEST(SslpvGrid, CubeAroundTheBoxWithCellsAlignedOnItsLargestExtent) {
