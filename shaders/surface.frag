@@ -1,7 +1,8 @@
 #version 450 core
 // Opaque surfaces: Lambertian reflection of every light (with shadows), of the VPLs' emergent light
 // (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
-// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1) + F_r(ω_o) · L_env(mirror direction): the
+// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1; with uSslpv, B = π L_i of SSLPV's Eq. 7,
+// sslpv/lookup.glsl) + F_r(ω_o) · L_env(mirror direction): the
 // specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
 // when there is none (render.specular off: no reflection).
 #include "common/lights.glsl"
