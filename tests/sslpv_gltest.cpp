@@ -229,6 +229,15 @@ TEST(Sslpv, SlabAgainstTheDipoleTotalAndTheReducedRecursion) {
       // injection lands 22.3 texels of 1024² per cell on average, so cells get 22² or 23² texels
       // (±4.5%) in a pattern the centre square (10 × 10 cells) averages to < 1%.
       EXPECT_NEAR(measured / recursion[c], 1.0, 0.01) << "band " << c;
+      // Against the dipole, SSLPV's own error: with the paper's skip of 2 steps the hemisphere
+      // reaches 0.71, 0.36, 0.15 and the face cap a third of that. Marble's σ_tr ΔX is 0.73, 1.05
+      // and 1.58 in these 6.25 mm cells, so most of R_d leaves within a cell or two of entry, in
+      // the steps the paper does not accumulate; the shorter the diffusion length, the more is
+      // lost (docs/sslpv.md). The recursion above accounts for these figures to 10⁻⁴; here only
+      // their envelope: some light in every band, less than R_d, and ordered r > g > b.
+      EXPECT_GT(measured / dipole, exitance == "face" ? 0.02 : 0.1) << "band " << c;
+      EXPECT_LT(measured / dipole, 1.0) << "band " << c;
+      if (c > 0) EXPECT_LT(measured, centreMean(image, c - 1)) << "band " << c;
     }
   }
 }
