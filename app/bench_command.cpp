@@ -347,7 +347,7 @@ Sweep parseSweep(const std::string& text) {
     throw InputError("--sweep: " + s.key + ": give one or more values, separated by commas");
   if (s.key == "method") throw InputError("--sweep: method: list the methods with --methods");
   s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0 ||
-           s.key.rfind("image_space.", 0) == 0;
+           s.key.rfind("image_space.", 0) == 0 || s.key.rfind("sslpv.", 0) == 0;
   return s;
 }
 

@@ -38,7 +38,7 @@ struct BenchOptions {
 struct Sweep {
   std::string key;
   std::vector<std::string> values;
-  /// A method knob (`sss.*` other than `sss.model`, `vpl.*`): the ground truth does not depend on it, so
+  /// A method knob (`sss.*` other than `sss.model`, `vpl.*`, `sslpv.*`): the ground truth does not depend on it, so
   /// its values share one reference. Any other key changes the picture the methods approximate.
   bool knob = false;
 };

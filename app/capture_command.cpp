@@ -125,6 +125,13 @@ int runCapture(const CaptureOptions& options) {
                {"unseen_share", coverage.unseenShare()},
                {"pearling", pearling}};
   }
+  if (const sss::Sslpv* lpv = renderer.sslpv()) {
+    const sss::SslpvGrid& g = lpv->grid();
+    run.sss["sslpv"] = {{"grid", g.size},
+                        {"cell_mm", g.cellMm()},
+                        {"origin_m", {g.origin.x, g.origin.y, g.origin.z}},
+                        {"bytes", lpv->bytes()}};
+  }
 
   std::filesystem::create_directories(out);
   for (int i = 0; i < options.frames; ++i) {

@@ -118,15 +118,18 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                   "maps), no-cache (the same gather per camera pixel against the light G-buffers, "
                                   "as translucent shadow maps; no maps, a new estimate every frame), image-space "
                                   "(local subsurface scattering integrated in the camera image by importance "
-                                  "sampling of the standard dipole, Mertens et al. 2003; parameters image_space.*) "
-                                  "or albedo (Lambertian with the object's albedo, no subsurface transport)."),
+                                  "sampling of the standard dipole, Mertens et al. 2003; parameters image_space.*), "
+                                  "sslpv (subsurface light propagation volumes, Borlum et al. 2011: sslpv.*, "
+                                  "docs/sslpv.md) or albedo (Lambertian with the object's albedo, no subsurface "
+                                  "transport)."),
                           "radiosity-maps");
-    p.choices = {"radiosity-maps", "no-cache", "image-space", "albedo"};
+    p.choices = {"radiosity-maps", "no-cache", "sslpv", "image-space", "albedo"};
     p.getter = [](const Config& c) {
       switch (c.render.sss.method) {
         case sss::SssMethod::RadiosityMaps: return json("radiosity-maps");
         case sss::SssMethod::NoCache: return json("no-cache");
         case sss::SssMethod::ImageSpace: return json("image-space");
+        case sss::SssMethod::Sslpv: return json("sslpv");
         case sss::SssMethod::Albedo: break;
       }
       return json("albedo");
@@ -136,6 +139,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
       c.render.sss.method = m == "albedo"        ? sss::SssMethod::Albedo
                             : m == "no-cache"    ? sss::SssMethod::NoCache
                             : m == "image-space" ? sss::SssMethod::ImageSpace
+                            : m == "sslpv"       ? sss::SssMethod::Sslpv
                                                  : sss::SssMethod::RadiosityMaps;
     };
     r.add(std::move(p));
@@ -227,6 +231,45 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "planar sampling (the paper's Fig. 4a)."),
                                true),
                    [](auto& c) -> auto& { return c.render.sss.stereographic; }));
+
+  // --- Subsurface light propagation volumes (issue 8; Borlum et al. 2011, docs/sslpv.md) ------------
+  r.add(bind<int>(withDefault(declare("sslpv.grid", "int", "cells per axis",
+                                      "N: the LPV grid of N^3 cubic cells around the translucent objects (the paper "
+                                      "uses 32, and 64 for its Fig. 9b). Memory and the GPU's texture limits are "
+                                      "checked when the renderer starts.", 8, 512),
+                              32),
+                  [](auto& c) -> auto& { return c.render.sslpv.grid; }));
+  r.add(bind<int>(withDefault(declare("sslpv.steps", "int", "steps",
+                                      "Propagation steps; light moves one cell per step (the paper uses 8 to 64, "
+                                      "mostly 32).", 1, 4096),
+                              32),
+                  [](auto& c) -> auto& { return c.render.sslpv.steps; }));
+  r.add(bind<int>(withDefault(declare("sslpv.skip", "int", "steps",
+                                      "The first propagation steps left out of the accumulation grid (the paper "
+                                      "skips 2 against flicker); must be less than sslpv.steps.", 0, 4095),
+                              2),
+                  [](auto& c) -> auto& { return c.render.sslpv.skip; }));
+  r.add(bind<int>(withDefault(declare("sslpv.inject_size", "int", "texels",
+                                      "Edge of the light G-buffers (a cube face for point lights) whose texels are "
+                                      "injected (the paper injects 256^2).", 16, 8192),
+                              256),
+                  [](auto& c) -> auto& { return c.render.sslpv.injectSize; }));
+  {
+    Param p = withDefault(declare("sslpv.exitance", "enum", "",
+                                  "Which flux of a surface cell's point light the area light of Eq. 7 carries out: "
+                                  "hemisphere (the paper's Eq. 5: all of the half space about the normal) or face "
+                                  "(the cap of 2pi/3 sr that one face of the cell subtends: the flux the propagation "
+                                  "passes across the surface per step; docs/sslpv.md)."),
+                          "hemisphere");
+    p.choices = {"hemisphere", "face"};
+    p.getter = [](const Config& c) {
+      return json(c.render.sslpv.exitance == sss::SslpvExitance::Face ? "face" : "hemisphere");
+    };
+    p.setter = [](Config& c, const json& v) {
+      c.render.sslpv.exitance = v.get<std::string>() == "face" ? sss::SslpvExitance::Face : sss::SslpvExitance::Hemisphere;
+    };
+    r.add(std::move(p));
+  }
 
   // --- Emergent light by virtual point lights (issue 7; the paper's §3.4, docs/vpl.md) -----------
   r.add(bind<int>(withDefault(declare("vpl.count", "int", "VPLs",

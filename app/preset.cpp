@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -52,8 +53,9 @@ const std::vector<std::string> kTopKeys = {"name",    "description", "camera",  
 const std::vector<std::string> kCameraKeys = {"type", "position", "target", "up", "fov_deg", "height"};
 const std::vector<std::string> kDirectionalKeys = {"type", "direction", "irradiance", "shadows"};
 const std::vector<std::string> kPointKeys = {"type", "position", "follow", "intensity", "shadows"};
-const std::vector<std::string> kObjectKeys = {"name",     "mesh",   "shape",    "size",        "material",
-                                              "albedo",   "position", "rotation_deg", "scale", "field"};
+const std::vector<std::string> kObjectKeys = {"name",     "mesh",     "shape",        "size",  "material",
+                                              "albedo",   "position", "rotation_deg", "scale", "field",
+                                              "volume"};
 const std::vector<std::string> kBlobFieldKeys = {"type", "scale"};
 const std::vector<std::string> kCandleFieldKeys = {"type", "duration_s"};
 const std::vector<std::string> kMeshFieldKeys = {"type", "mesh", "melt_s"};
@@ -63,6 +65,10 @@ constexpr Range kMeltDurationS{0.0, 1e6, true};    ///< seconds until a mesh fie
 const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta", "from", "scale"};
 constexpr Range kMaterialScale{0.0, 1e6, true};  ///< multiplies σ_s and σ_a of a "from" material
 const std::vector<std::string> kAnimationKeys = {"duration_s", "loop", "start_s"};
+const std::vector<std::string> kVolumeKeys = {"material", "axis", "period", "fraction", "turbulence", "seed"};
+constexpr Range kVolumePeriod{0.0, 1e4, true};  ///< metres between layers of a "volume"
+constexpr Range kVolumeFraction{0.0, 1.0};      ///< share of a period in the second material
+constexpr Range kVolumeTurbulence{0.0, 1e3};    ///< periods the layers wander
 
 /// Walks one preset document and fills a Config. Every accessor checks type and range and throws
 /// InputError located at the offending value (or key, for unknown keys).
@@ -384,6 +390,12 @@ class PresetReader {
       object.material = readMaterial(p / "material");
       object.translucent = true;
     }
+    if (has(p, "volume")) {
+      if (!object.translucent)
+        doc_.failAtKey(p / "volume", "\"volume\" is a second material inside a translucent object; give the object a "
+                                     "\"material\" first");
+      object.volume = readVolume(p / "volume");
+    }
     object.albedo = optVec3(p, "albedo", kAlbedo).value_or(object.albedo);
     object.transform.position = optVec3(p, "position", coordinates()).value_or(glm::vec3(0.0f));
     object.transform.rotationDeg = optVec3(p, "rotation_deg", kAngleDeg).value_or(glm::vec3(0.0f));
@@ -485,6 +497,27 @@ class PresetReader {
       doc_.fail(p, std::string("invalid material: ") + e.what());
     }
     return m;
+  }
+
+  /// "volume": {"material": …, "period": 0.01, "axis": [0, 1, 0], "fraction": 0.5, "turbulence": 0,
+  /// "seed": 0}: a second material in layers (veins with turbulence) inside a translucent object.
+  sss::MaterialVolume readVolume(const Ptr& p) const {
+    checkKeys(p, kVolumeKeys, "a volume");
+    sss::MaterialVolume v;
+    v.material = readMaterial(require(p, "material"));
+    v.period = number(require(p, "period"), "period", kVolumePeriod);
+    if (has(p, "axis")) v.axis = direction(p / "axis", "axis");
+    v.fraction = optNumber(p, "fraction", kVolumeFraction).value_or(v.fraction);
+    v.turbulence = optNumber(p, "turbulence", kVolumeTurbulence).value_or(v.turbulence);
+    if (has(p, "seed")) {
+      const Ptr seed = p / "seed";
+      const json& s = at(seed);
+      constexpr std::uint64_t kMaxSeed = 0xFFFFFFFFu;
+      if (!s.is_number_integer() || (s.is_number_unsigned() ? s.get<std::uint64_t>() > kMaxSeed : s.get<std::int64_t>() < 0))
+        doc_.fail(seed, "seed: expected an integer in [0, 4294967295]");
+      v.seed = static_cast<std::uint32_t>(s.get<std::uint64_t>());
+    }
+    return v;
   }
 
   /// "settings": registry keys, applied in document order; errors are re-located at the value.

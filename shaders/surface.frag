@@ -1,7 +1,8 @@
 #version 450 core
 // Opaque surfaces: Lambertian reflection of every light (with shadows), of the VPLs' emergent light
 // (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
-// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1) + F_r(ω_o) · L_env(mirror direction): the
+// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1; with uSslpv, B = π L_i of SSLPV's Eq. 7,
+// sslpv/lookup.glsl) + F_r(ω_o) · L_env(mirror direction): the
 // specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
 // when there is none (render.specular off: no reflection). With uImageSpace, B comes from the
 // image-space method's accumulation at this pixel (image_space/result.glsl).
@@ -11,6 +12,7 @@
 #include "sss/gather.glsl"
 #include "sss/vpl_receiver.glsl"
 #include "image_space/result.glsl"
+#include "sslpv/lookup.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -58,7 +60,8 @@ void main() {
     vec3 b = uImageSpace != 0 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
              : uNoCache != 0
                  ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
-                 : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
+             : uSslpv != 0 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
+                           : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
     vec3 v = normalize(toCamera);
     vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);

@@ -12,6 +12,7 @@ enum class SssMethod {
   Albedo,         ///< no subsurface transport: Lambertian with the object's albedo (a baseline)
   NoCache,        ///< the gather per camera pixel against the light G-buffers, no maps (paper Fig. 11)
   ImageSpace,     ///< local subsurface scattering in image space (Mertens et al. 2003; issue 8, docs/image-space.md)
+  Sslpv,          ///< subsurface light propagation volumes (Børlum et al. 2011, docs/sslpv.md)
 };
 
 /// The scattered radiosity maps of Dal Corso et al. (sss.* parameters).
@@ -80,6 +81,21 @@ struct ImageSpaceSettings {
   bool renormalize = false;    ///< image_space.renormalize: divide by the sampled share of R_d on valid surface
 };
 
+/// Which flux of a cell's point light SSLPV's area light carries out of the surface (sslpv.exitance).
+enum class SslpvExitance {
+  Hemisphere,  ///< all of the hemisphere about the normal (the paper's Eq. 5)
+  Face,        ///< the cap of one cube face's solid angle, 2π/3 sr (what the propagation passes on)
+};
+
+/// Subsurface light propagation volumes (Børlum et al. 2011; sslpv.*).
+struct SslpvSettings {
+  int grid = 32;         ///< sslpv.grid: LPV cells per axis
+  int steps = 32;        ///< sslpv.steps: propagation steps
+  int skip = 2;          ///< sslpv.skip: first steps left out of the accumulation grid
+  int injectSize = 256;  ///< sslpv.inject_size [texels]: light G-buffers injected from
+  SslpvExitance exitance = SslpvExitance::Hemisphere;  ///< sslpv.exitance
+};
+
 struct RenderSettings {
   int width = 0;              ///< render.width [px]
   int height = 0;             ///< render.height [px]
@@ -93,6 +109,7 @@ struct RenderSettings {
   SssSettings sss;
   VplSettings vpl;
   ImageSpaceSettings imageSpace;
+  SslpvSettings sslpv;
 };
 
 }  // namespace tallow::sss

@@ -34,6 +34,7 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
   RadiosityMaps::checkLimits(scene, settings);
   VirtualPointLights::checkLimits(scene, settings);
   ImageSpaceSss::checkLimits(scene, settings);
+  Sslpv::checkLimits(scene, settings);
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
@@ -84,10 +85,19 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
   if (imageSpace)
     for (const char* name : {"image_space.gbuffer", "image_space.scatter", "image_space.combine"})
       passes.push_back({name, ImageSpaceSss::describe(scene, settings, name)});
+  const bool sslpv = Sslpv::applies(scene, settings);
+  if (sslpv) {
+    passes.push_back({"sslpv.voxelize", Sslpv::describeVoxelize(scene, settings)});
+    passes.push_back({"sslpv.light_gbuffer", Sslpv::describeLightGBuffer(scene, settings)});
+    passes.push_back({"sslpv.inject", Sslpv::describeInject(settings)});
+    passes.push_back({"sslpv.propagate", Sslpv::describePropagate(settings)});
+  }
   if (VirtualPointLights::applies(scene, settings))
     passes.push_back({"vpl", VirtualPointLights::describe(scene, settings)});
   passes.push_back({"surface", std::to_string(scene.objects.size()) + " object(s): " +
-                                   (maps      ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
+                                   (sslpv ? "translucent ones from the SSLPV accumulation grid (area light of Eqs. 5-7 "
+                                            "after the SH rotation of Eq. 6), opaque ones Lambertian"
+                                    : maps ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
                                                 "ones Lambertian"
                                     : imageSpace ? "translucent ones from the image-space estimate at their pixel (L = F_t/pi "
                                                    "B, standard dipole), opaque ones Lambertian"
@@ -128,7 +138,20 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
       !fields_->stale(timeS, settings.fieldRes) && maps_ && !maps_->needsUpdate(mapStateKey, settings) &&
       vplKey_ == vplKey(settings, mapStateKey))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name == "vpl"; });
+  // SSLPV is deterministic: while its inputs hold, its grids are what a recomputation would give.
+  if (sslpv_ && Sslpv::applies(scene, settings)) {
+    const std::string medium = sslpvMediumKey(scene, settings, timeS);
+    const bool mediumStale = sslpv_->mediumStale(medium);
+    if (!mediumStale) std::erase_if(passes, [](const PlannedPass& p) { return p.name == "sslpv.voxelize"; });
+    if (!mediumStale && !sslpv_->lightStale(Sslpv::lightKey(scene, settings, medium)))
+      std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sslpv.", 0) == 0; });
+  }
   return passes;
+}
+
+std::string Renderer::sslpvMediumKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
+  return Sslpv::mediumKey(scene, settings, fields_->animated() ? timeS : 0.0) + "|restart " +
+         std::to_string(accumulation_);
 }
 
 std::string Renderer::mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
@@ -193,6 +216,16 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       maps_->renderLightGBuffers(scene, settings, geometry_, key);
     } else if (pass.name == "sss.maps") {
       maps_->renderMaps(scene, settings, geometry_);
+    } else if (pass.name == "sslpv.voxelize") {
+      if (!sslpv_) sslpv_ = std::make_unique<Sslpv>(shaders_);
+      sslpv_->voxelize(scene, settings, geometry_, sslpvMediumKey(scene, settings, timeS));
+    } else if (pass.name == "sslpv.light_gbuffer") {
+      sslpv_->renderLightGBuffers(scene, settings, geometry_,
+                                  Sslpv::lightKey(scene, settings, sslpvMediumKey(scene, settings, timeS)));
+    } else if (pass.name == "sslpv.inject") {
+      sslpv_->inject(scene, settings);
+    } else if (pass.name == "sslpv.propagate") {
+      sslpv_->propagate(settings);
     } else if (pass.name == "vpl") {
       if (!vpls_) vpls_ = std::make_unique<VirtualPointLights>(shaders_);
       vpls_->render(scene, settings, geometry_, *maps_, vplFrame_++);
@@ -213,16 +246,16 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       const float one = 1.0f;
       glClearNamedFramebufferfv(target_.id(), GL_DEPTH, 0, &one);
       const CameraView camera = cameraView(scene.camera, aspect, geometry_.worldBounds());
-      const RadiosityMaps* maps = maps_ && RadiosityMaps::applies(scene, settings) ? maps_.get() : nullptr;
-      const RadiosityMaps* noCache =
-          maps_ && settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings)
-              ? maps_.get()
-              : nullptr;
+      // The frame's method: which pass's output shades the translucent objects.
+      TranslucentSource source;
+      if (maps_ && RadiosityMaps::applies(scene, settings)) source.maps = maps_.get();
+      if (maps_ && settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings))
+        source.noCache = maps_.get();
+      if (imageSpace_ && ImageSpaceSss::applies(scene, settings)) source.imageSpace = imageSpace_.get();
+      if (sslpv_ && Sslpv::applies(scene, settings)) source.sslpv = sslpv_.get();
       const VirtualPointLights* vpls = vpls_ && VirtualPointLights::applies(scene, settings) ? vpls_.get() : nullptr;
-      const ImageSpaceSss* imageSpace =
-          imageSpace_ && ImageSpaceSss::applies(scene, settings) ? imageSpace_.get() : nullptr;
-      surface_.render(scene, settings, geometry_, camera, shadows_, maps, noCache, vpls, imageSpace, noCacheFrame_++,
-                      target_, settings.width, settings.height);
+      surface_.render(scene, settings, geometry_, camera, shadows_, source, vpls, noCacheFrame_++, target_,
+                      settings.width, settings.height);
     }
   }
   FrameTimings t;
@@ -257,7 +290,8 @@ std::vector<std::uint8_t> Renderer::receiverMask() const {
 
 std::size_t Renderer::gpuBytes() const {
   return radiance_.bytes() + coverage_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
-         (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0) + (imageSpace_ ? imageSpace_->bytes() : 0);
+         (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0) + (imageSpace_ ? imageSpace_->bytes() : 0) +
+         (sslpv_ ? sslpv_->bytes() : 0);
 }
 
 }  // namespace tallow::sss

@@ -80,6 +80,8 @@ class Renderer {
   const ImageSpaceSss* imageSpace() const { return imageSpace_.get(); }
   /// The VPLs of the last frame that had them (null before, or when the scene needs none).
   const VirtualPointLights* virtualPointLights() const { return vpls_.get(); }
+  /// SSLPV's grids, once a frame has used them (null before, or with another method).
+  const Sslpv* sslpv() const { return sslpv_.get(); }
   /// Forgets what the progressive methods have accumulated, keeping every allocation: the next
   /// frame restarts the radiosity maps (as a change of their state key does) and the no-cache
   /// seeds and the image-space accumulation. For `tallow bench`, which times the frames after a
@@ -94,6 +96,9 @@ class Renderer {
   std::vector<PlannedPass> planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
                                      const std::string& mapStateKey) const;
 
+  /// What SSLPV's medium grid depends on at time t (Sslpv::mediumKey, with the restarts).
+  std::string sslpvMediumKey(const Scene& scene, const RenderSettings& settings, double timeS) const;
+
   /// What the VPLs depend on beyond the maps (vpl.* settings), with the maps' state key.
   static std::string vplKey(const RenderSettings& settings, const std::string& mapStateKey);
 
@@ -103,6 +108,7 @@ class Renderer {
   std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
   std::unique_ptr<VirtualPointLights> vpls_;  ///< created on the first frame that needs them
   std::unique_ptr<ImageSpaceSss> imageSpace_;  ///< created on the first frame that needs it
+  std::unique_ptr<Sslpv> sslpv_;         ///< created on the first frame that needs it
   std::string vplKey_;                   ///< vplKey() of the last VPL pass
   int vplFrame_ = 0;                     ///< frames with VPLs: seeds the directions when not stable
   int noCacheFrame_ = 0;                 ///< seeds of the no-cache gather, one estimate per frame

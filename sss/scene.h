@@ -3,6 +3,7 @@
 // app/preset.h; passes read it, never write it.
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -37,6 +38,18 @@ struct Transform {
   float scale = 1.0f;
 };
 
+/// A second material inside a translucent object, in layers across `axis` that turbulence warps
+/// into veins (preset key "volume"; only SSLPV's heterogeneous medium reads it, the other methods
+/// shade the object with its own material: shaders/sslpv/volume.glsl, docs/sslpv.md).
+struct MaterialVolume {
+  Material material;                 ///< the second material
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  ///< unit normal of the layers in the object's frame
+  float period = 0.01f;              ///< metres from one layer to the next
+  float fraction = 0.5f;             ///< share of each period in the second material, [0, 1]
+  float turbulence = 0.0f;           ///< how far the layers wander (periods); 0: flat layers
+  std::uint32_t seed = 0;            ///< of the turbulence's noise
+};
+
 struct SceneObject {
   std::string name;
   ShapeKind shape = ShapeKind::Mesh;
@@ -48,6 +61,7 @@ struct SceneObject {
   /// they are drawn with `albedo` like opaque ones.
   bool translucent = false;
   Material material;
+  std::optional<MaterialVolume> volume;  ///< translucent objects only: a heterogeneous interior
   glm::vec3 albedo{0.8f};  ///< Lambertian reflectance of the opaque path, in [0, 1]
 };
 

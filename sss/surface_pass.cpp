@@ -12,7 +12,8 @@ constexpr GLuint kMapDepthUnit = 3;
 constexpr GLuint kEnvironmentUnit = 6;
 constexpr GLuint kGatherFirstUnit = 7;  // the light G-buffers of the no-cache gather: 7 … 10
 constexpr GLuint kVplShadowUnit = 11;
-constexpr GLuint kImageSpaceFirstUnit = 12;  // the image-space accumulation: 12, 13
+constexpr GLuint kSslpvFirstUnit = 12;       // SSLPV's accumulation grids and medium: 12 … 15
+constexpr GLuint kImageSpaceFirstUnit = 16;  // the image-space accumulation: 16, 17
 
 }  // namespace
 
@@ -31,9 +32,11 @@ void SurfacePass::setEnvironment(const Environment& environment) {
 }
 
 void SurfacePass::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                         const CameraView& camera, const ShadowPass& shadows, const RadiosityMaps* maps,
-                         const RadiosityMaps* noCache, const VirtualPointLights* vpls, const ImageSpaceSss* imageSpace,
-                         int frame, const gpu::Framebuffer& target, int width, int height) {
+                         const CameraView& camera, const ShadowPass& shadows, const TranslucentSource& source,
+                         const VirtualPointLights* vpls, int frame, const gpu::Framebuffer& target, int width,
+                         int height) {
+  const RadiosityMaps* maps = source.maps;
+  const RadiosityMaps* noCache = source.noCache;
   auto& p = program_;
   setLightUniforms(p, scene, settings, shadows, kDirectionalShadowUnit, kPointShadowUnit);
   p.set("uAmbient", scene.ambient);
@@ -63,8 +66,10 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uMapCount", 0);
   }
   VirtualPointLights::setReceiverUniforms(p, vpls, kVplShadowUnit);
-  p.set("uImageSpace", imageSpace ? 1 : 0);
-  ImageSpaceSss::setSurfaceUniforms(p, imageSpace, settings, kImageSpaceFirstUnit);
+  p.set("uImageSpace", source.imageSpace ? 1 : 0);
+  ImageSpaceSss::setSurfaceUniforms(p, source.imageSpace, settings, kImageSpaceFirstUnit);
+  if (source.sslpv) source.sslpv->setLookupUniforms(p, settings, kSslpvFirstUnit);
+  else Sslpv::setLookupOff(p, kSslpvFirstUnit);
 
   target.bind();
   glViewport(0, 0, width, height);
@@ -78,7 +83,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
-    p.set("uTranslucent", (maps || noCache || imageSpace) && object.translucent ? 1 : 0);
+    p.set("uTranslucent", source.any() && object.translucent ? 1 : 0);
     if (noCache && object.translucent) p.set("uSlot", noCache->slots()[static_cast<std::size_t>(item.objectIndex)]);
     p.set("uObjectEta", object.material.eta);
     item.draw();

@@ -373,6 +373,43 @@ TEST(Preset, AMaterialFromAMeasuredOneScaled) {
             "p.json:4:82: \"scale\" applies to a material given \"from\" a measured one");
 }
 
+TEST(Preset, AVolumeInsideATranslucentObject) {
+  // "volume": a second material in layers or veins (SSLPV's heterogeneous medium), every key checked.
+  const std::string good =
+      R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Ketchup", "period": 0.02, )"
+      R"("fraction": 0.25, "turbulence": 1.5, "seed": 4, "axis": [0, 0, 2]}})";
+  const Config c = parse(withObject(good));
+  ASSERT_TRUE(c.scene.objects[0].volume.has_value());
+  const sss::MaterialVolume& v = *c.scene.objects[0].volume;
+  EXPECT_EQ(v.material.name, "Ketchup");
+  EXPECT_FLOAT_EQ(v.period, 0.02f);
+  EXPECT_FLOAT_EQ(v.fraction, 0.25f);
+  EXPECT_FLOAT_EQ(v.turbulence, 1.5f);
+  EXPECT_EQ(v.seed, 4u);
+  EXPECT_FLOAT_EQ(v.axis.z, 1.0f);  // normalised
+  const auto defaults = parse(withObject(R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Ketchup", "period": 1}})"));
+  EXPECT_FLOAT_EQ(defaults.scene.objects[0].volume->fraction, 0.5f);
+  EXPECT_FLOAT_EQ(defaults.scene.objects[0].volume->axis.y, 1.0f);
+  EXPECT_FALSE(parse(withObject(R"({"shape": "sphere", "material": "Marble"})")).scene.objects[0].volume.has_value());
+  // Errors, located at the key or value (line 4; the object starts at column 5).
+  const auto at = [](const std::string& object, const std::string& needle) {
+    return "p.json:4:" + std::to_string(5 + object.find(needle)) + ": ";
+  };
+  const std::string misspelt = R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Ketchup", "perid": 1}})";
+  EXPECT_EQ(errorOf(withObject(misspelt)), at(misspelt, "\"perid\"") + "unknown key \"perid\" (did you mean \"period\"?)");
+  const std::string opaque = R"({"shape": "sphere", "volume": {"material": "Ketchup", "period": 1}})";
+  EXPECT_EQ(errorOf(withObject(opaque)).substr(0, at(opaque, "\"volume\"").size() + 10),
+            at(opaque, "\"volume\"") + "\"volume\" i");
+  const std::string missing = R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Ketchup"}})";
+  EXPECT_EQ(errorOf(withObject(missing)), at(missing, "{\"material\": \"Ketchup\"") + "missing \"period\"");
+  const std::string fraction = R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Ketchup", "period": 1, "fraction": 2}})";
+  EXPECT_EQ(errorOf(withObject(fraction)), at(fraction, "2}") + "fraction: 2 is out of range [0, 1]");
+  const std::string seed = R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Ketchup", "period": 1, "seed": -1}})";
+  EXPECT_EQ(errorOf(withObject(seed)), at(seed, "-1") + "seed: expected an integer in [0, 4294967295]");
+  const std::string inner = R"({"shape": "sphere", "material": "Marble", "volume": {"material": "Marbel", "period": 1}})";
+  EXPECT_EQ(errorOf(withObject(inner)), at(inner, "\"Marbel\"") + "unknown material \"Marbel\" (did you mean \"Marble\"?)");
+}
+
 TEST(Preset, SettingsGoThroughTheRegistry) {
   EXPECT_EQ(errorOf(withTopLevel(R"("settings": {"render.width": 0})")),
             "p.json:3:32: render.width: 0 is out of range [1, 16384]");

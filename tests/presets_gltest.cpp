@@ -52,7 +52,8 @@ TEST(Presets, EveryShippedPresetCapturesFiniteFrames) {
   // lights and settings are all still read and rendered.
   const std::vector<std::string> small = {"--set", "sss.maps=4",         "--set", "sss.samples=4",
                                           "--set", "sss.map_size=128",   "--set", "sss.light_map_size=128",
-                                          "--set", "field.res=32"};
+                                          "--set", "field.res=32",            "--set", "sslpv.grid=16",
+                                          "--set", "sslpv.inject_size=64"};
   test::TempDir dir;
   for (const std::string& name : shippedPresets()) {
     SCOPED_TRACE(name);
