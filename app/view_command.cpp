@@ -71,6 +71,9 @@ CheckedInputs checkInputs(const ViewOptions& options) {
   if (!options.script.empty()) {
     in.script = loadScript(options.script, parameterRegistry(loaded.materials));
     for (const ScriptCommand& c : in.script->commands) {
+      if (options.frames > 0 && c.frame >= options.frames)
+        throw InputError(c.where + ": frame " + std::to_string(c.frame) + " is beyond --frames " +
+                         std::to_string(options.frames));
       if (c.action == ScriptAction::Screenshot) checkScreenshotName(c.path, c.where + ": screenshot");
       if (c.action == ScriptAction::SavePreset) checkWritableFolder(folderOf(c.path));
     }
@@ -215,7 +218,7 @@ int runView(const ViewOptions& options) {
       throw InputError(scriptWhere + ": " + feedback.frame.refused);
     panel.record(feedback.frame);
     feedback.debugNote = debugPass.render(debug, session.renderer(), session.config().scene, session.config().render, 0,
-                                          width, height);
+                                          width, height, options.hidePanel ? 0 : panel.coveredLeft());
     imgui.endFrame();
     if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS)) {
       feedback.triangles = session.renderer().triangleCount();

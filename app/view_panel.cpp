@@ -79,7 +79,11 @@ std::string ViewPanel::draw(ViewSession& session, sss::DebugView& debug, const V
   ImGui::SetNextWindowSize(ImVec2(panelWidth, static_cast<float>(height)), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(kPanelAlpha);
   std::string status;
-  if (ImGui::Begin("Tallow")) {
+  const bool open = ImGui::Begin("Tallow");
+  // A panel against the left edge covers the window up to its right edge.
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  coveredLeft_ = open && pos.x <= 1.0f ? static_cast<int>(pos.x + size.x) : 0;
+  if (open) {
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.0f);  // room for the labels
     status = drawPreset(session);
     if (ImGui::CollapsingHeader("Playback and camera", ImGuiTreeNodeFlags_DefaultOpen)) drawPlayback(session);
@@ -136,7 +140,7 @@ void ViewPanel::drawPlayback(ViewSession& session) {
 
 void ViewPanel::drawFeedback(const ViewSession& session, const ViewFeedback& feedback) {
   const ViewSession::Frame& f = feedback.frame;
-  ImGui::Text("wall %.1f ms (%.0f fps)   GPU %.1f ms", f.wallMs, f.wallMs > 0.0 ? 1000.0 / f.wallMs : 0.0,
+  ImGui::Text("wall %.1f ms (%.3g fps)   GPU %.1f ms", f.wallMs, f.wallMs > 0.0 ? 1000.0 / f.wallMs : 0.0,
               f.gpu.gpuTotalMs);
   drawTimingGraph();
   const sss::RadiosityMaps* maps = session.renderer().radiosityMaps();

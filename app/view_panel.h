@@ -38,6 +38,9 @@ class ViewPanel {
   /// show (a load's error) or "".
   std::string draw(ViewSession& session, sss::DebugView& debug, const ViewFeedback& feedback, ViewRequests& requests,
                    int width, int height);
+  /// Pixels from the window's left edge to the panel's right edge (0 when collapsed or moved away
+  /// from the left edge): where debug views should not put what matters.
+  int coveredLeft() const { return coveredLeft_; }
 
  private:
   std::string drawPreset(ViewSession& session);
@@ -54,6 +57,7 @@ class ViewPanel {
   std::deque<float> wallHistory_;
   std::string saveBase_;
   std::string savedFor_;  ///< the preset saveBase_ was named after
+  int coveredLeft_ = 0;
 };
 
 }  // namespace tallow::app

@@ -66,14 +66,15 @@ std::optional<DebugViewPass::LightLayer> DebugViewPass::lightLayer(const Scene& 
 }
 
 std::string DebugViewPass::render(const DebugView& view, Renderer& renderer, const Scene& scene,
-                                  const RenderSettings& settings, GLuint target, int width, int height) {
+                                  const RenderSettings& settings, GLuint target, int width, int height,
+                                  int coveredLeft) {
   const bool overlay = view.kind == DebugViewKind::Final || view.kind == DebugViewKind::Wireframe ||
                        view.kind == DebugViewKind::Vpl;
   std::string note;
   if (!overlay) {
     glBindFramebuffer(GL_FRAMEBUFFER, target);
     glViewport(0, 0, width, height);
-    note = drawTexture(view, renderer, scene, settings, width, height);
+    note = drawTexture(view, renderer, scene, settings, width, height, coveredLeft);
     if (note.empty()) return "";
   }
   // The final image, and the overlays over it.
@@ -88,9 +89,11 @@ std::string DebugViewPass::render(const DebugView& view, Renderer& renderer, con
 }
 
 std::string DebugViewPass::drawTexture(const DebugView& view, const Renderer& renderer, const Scene& scene,
-                                       const RenderSettings& settings, int width, int height) {
+                                       const RenderSettings& settings, int width, int height, int coveredLeft) {
   gpu::Program& p = textureProgram_;
   p.set("uViewport", glm::vec2(width, height));
+  // Beside the panel while a third of the window is left; over all of it otherwise.
+  p.set("uLeft", coveredLeft < 2 * width / 3 ? static_cast<float>(std::max(coveredLeft, 0)) : 0.0f);
   p.set("uExposureScale", std::exp2(settings.toneMap.exposureEv + view.exposureEv));
   p.set("uToneMap", static_cast<int>(settings.toneMap.op));
   p.set("uSquare", 0);

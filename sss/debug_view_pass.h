@@ -25,11 +25,13 @@ class DebugViewPass {
   bool hasReference() const { return reference_.id() != 0; }
 
   /// Draws `view` of `renderer`'s last frame (rendered from `scene` with `settings`, of the size
-  /// width × height) into framebuffer `target`. When the frame has nothing to show for the view
-  /// (no radiosity maps with this method, a light or map index beyond the scene's, no reference),
-  /// draws the final image and returns why, in one line; returns "" otherwise.
+  /// width × height) into framebuffer `target`. Square textures (G-buffers, maps) are centred in
+  /// the part right of `coveredLeft` pixels (a panel over the window's left side). When the frame
+  /// has nothing to show for the view (no radiosity maps with this method, a light or map index
+  /// beyond the scene's, no reference), draws the final image and returns why, in one line;
+  /// returns "" otherwise.
   std::string render(const DebugView& view, Renderer& renderer, const Scene& scene,
-                     const RenderSettings& settings, GLuint target, int width, int height);
+                     const RenderSettings& settings, GLuint target, int width, int height, int coveredLeft = 0);
 
   /// How many G-buffer layers (cube faces) a light has and which texture layer holds it: for the
   /// panel's index sliders. Empty when the frame has no light G-buffers.
@@ -41,7 +43,7 @@ class DebugViewPass {
 
  private:
   std::string drawTexture(const DebugView& view, const Renderer& renderer, const Scene& scene,
-                          const RenderSettings& settings, int width, int height);
+                          const RenderSettings& settings, int width, int height, int coveredLeft);
   void drawWireframe(const Renderer& renderer, const Scene& scene, int width, int height);
   std::string drawVpls(const Renderer& renderer, const Scene& scene, const RenderSettings& settings, int width,
                        int height);

@@ -13,6 +13,7 @@ const int MODE_DIFFERENCE = 4;
 
 uniform int uMode;
 uniform vec2 uViewport;     // window size in pixels
+uniform float uLeft;        // pixels on the left the panel covers: a square is centred right of them
 uniform int uSquare;        // 1: a square texture, shown letterboxed in the window
 uniform int uCube;          // G-buffer views: 1 reads face uFace of cube uLayer of uCubes
 uniform int uLayer;         // array layer (directional G-buffer, map k) or cube index
@@ -60,8 +61,9 @@ void main() {
   vec2 st = vUv;
   if (uSquare != 0) {
     // The largest centred square, the texture upright as its camera saw it.
-    float side = min(uViewport.x, uViewport.y);
-    vec2 corner = 0.5 * (uViewport - vec2(side));
+    vec2 free = vec2(uViewport.x - uLeft, uViewport.y);
+    float side = min(free.x, free.y);
+    vec2 corner = vec2(uLeft, 0.0) + 0.5 * (free - vec2(side));
     st = (gl_FragCoord.xy - corner) / side;
     if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0)))) {
       oColor = vec4(BACKDROP, 1.0);
