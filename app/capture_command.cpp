@@ -10,6 +10,10 @@
 #include "app/frame_stats.h"
 #include "app/input_error.h"
 #include "app/params.h"
+#include "app/playback.h"
+#include "app/scene_controls.h"
+#include "app/video_encoder.h"
+#include "app/view_script.h"
 #include "gpu/atomic_file.h"
 #include "gpu/image_error.h"
 #include "gpu/image_io.h"
@@ -44,10 +48,29 @@ int runCapture(const CaptureOptions& options) {
   if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
   if (options.frames < 1) throw InputError("--frames: must be at least 1");
   if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
-  const LoadedScene loaded = loadScene(options.scene);
-  const Config& config = loaded.config;
+  LoadedScene loaded = loadScene(options.scene);
+  Config& config = loaded.config;
   const std::filesystem::path out(options.outDir);
   checkWritableFolder(out);
+  const Registry registry = parameterRegistry(loaded.materials);
+  std::optional<Script> script;
+  if (!options.script.empty()) {
+    script = loadScript(options.script, registry);
+    for (const ScriptCommand& c : script->commands) {
+      if (windowOnly(c.action))
+        throw InputError(c.where + ": " + std::string(scriptActionName(c.action)) +
+                         " applies to view only (capture writes every frame)");
+      if (c.frame >= options.frames)
+        throw InputError(c.where + ": frame " + std::to_string(c.frame) + " is beyond --frames " +
+                         std::to_string(options.frames));
+    }
+  }
+  if (!options.video.empty()) {
+    checkVideoOutput(options.video);
+    checkWritableFolder(std::filesystem::path(options.video).parent_path().empty()
+                            ? std::filesystem::path(".")
+                            : std::filesystem::path(options.video).parent_path());
+  }
 
   gpu::ContextOptions contextOptions;
   contextOptions.backend = gpu::parseGlBackend(options.gl);
@@ -65,23 +88,47 @@ int runCapture(const CaptureOptions& options) {
   run.width = config.render.width;
   run.height = config.render.height;
   run.plan = sss::Renderer::plan(config.scene, config.render);
-  run.parameters = parameterRegistry(loaded.materials).snapshot(config);
+  run.parameters = registry.snapshot(config);
   if (options.scene.explain)
     for (const auto& p : run.plan) std::printf("pass %-20s %s\n", p.name.c_str(), p.reason.c_str());
 
   // Render every frame before writing any file, so that a failure leaves nothing behind.
   std::vector<gpu::Image> images;
+  std::vector<gpu::ToneMapSettings> toneMaps;
+  // Frame i is at start + i / fps unless a script pauses, seeks or changes the speed (no wrapping:
+  // a capture past the animation's end shows the time it asks for).
+  Playback playback(options.timeS.value_or(config.scene.startS), config.scene.durationS, config.scene.loop);
+  nlohmann::json parameters = run.parameters;
   for (int i = 0; i < options.frames; ++i) {
     FrameRecord frame;
     frame.index = i;
-    frame.timeS = options.timeS.value_or(config.scene.startS) + i / options.fps;
+    playback.setFrame(i, options.fps);
+    std::string where;  // the frame's last script command, to locate a change the GPU refuses
+    if (script)
+      for (const ScriptCommand* c : script->at(i)) {
+        applyScriptCommand(*c, config, registry, playback);
+        where = c->where;
+      }
+    if (!where.empty()) {
+      nlohmann::json now = registry.snapshot(config);
+      frame.changed = changedParameters(parameters, now);
+      parameters = std::move(now);
+    }
+    frame.timeS = playback.rawTime();
     const auto start = std::chrono::steady_clock::now();
-    frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+    try {
+      frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+    } catch (const std::invalid_argument& e) {
+      if (where.empty()) throw;
+      throw InputError(where + ": " + e.what());
+    }
+    frame.sss = mapsRecord(renderer);
     for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
       if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
     glFinish();
     frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     images.push_back(renderer.readRadiance());
+    toneMaps.push_back(config.render.toneMap);  // a script may change the exposure mid-sequence
     if (i > 0) {
       // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
       const std::vector<std::uint8_t> receivers = renderer.receiverMask();
@@ -133,12 +180,22 @@ int runCapture(const CaptureOptions& options) {
                         {"bytes", lpv->bytes()}};
   }
 
+  if (!options.video.empty())
+    for (const gpu::Image& image : images)
+      if (image.width != images.front().width || image.height != images.front().height)
+        throw InputError("--video: the script changes the image size, which a video cannot have");
   std::filesystem::create_directories(out);
   for (int i = 0; i < options.frames; ++i) {
     const auto& image = images[static_cast<std::size_t>(i)];
-    gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);
+    gpu::writePng(out / frameName(i, "png"), image, toneMaps[static_cast<std::size_t>(i)]);
     gpu::writeExr(out / frameName(i, "exr"), image, options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
                   {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
+  }
+  if (!options.video.empty()) {
+    writeVideo(options.video, images.front().width, images.front().height, options.fps, options.frames, [&](int i) {
+      const auto k = static_cast<std::size_t>(i);
+      return gpu::toneMappedRgb8(images[k], toneMaps[k]);
+    });
   }
   gpu::writeTextFileAtomically(out / "stats.json", toJson(run).dump(2) + "\n");
   std::printf("tallow: wrote %d frame(s) of %s (%dx%d, %s) to %s\n", options.frames, loaded.presetName.c_str(),

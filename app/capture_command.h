@@ -17,6 +17,8 @@ struct CaptureOptions {
   std::optional<double> timeS;  ///< animation time of the first frame; unset: the preset's start_s
   double fps = 30.0;
   bool exrFloat = false;  ///< 32-bit float EXR channels instead of half
+  std::string script;     ///< timed parameter changes (app/view_script.h); empty: none
+  std::string video;      ///< also encode the frames into this video with ffmpeg; empty: none
 };
 
 /// Returns the process exit code; throws InputError / ContextError / ShaderError / runtime_error

@@ -14,6 +14,19 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+nlohmann::json mapsRecord(const sss::Renderer& renderer) {
+  const sss::RadiosityMaps* maps = renderer.radiosityMaps();
+  if (!maps) return nullptr;
+  return {{"maps", maps->views().size()}, {"frames_accumulated", maps->frames()}, {"map_bytes", maps->bytes()}};
+}
+
+nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after) {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto it = after.begin(); it != after.end(); ++it)
+    if (!before.contains(it.key()) || before.at(it.key()) != it.value()) out[it.key()] = it.value();
+  return out;
+}
+
 nlohmann::json toJson(const RunRecord& run) {
   using nlohmann::json;
   json frames = json::array();
@@ -33,7 +46,9 @@ nlohmann::json toJson(const RunRecord& run) {
                          json lights = json::array();
                          for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
                          return lights;
-                       }()}});
+                       }()},
+                      {"changed", f.changed},
+                      {"sss", f.sss}});
     if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
     wall.push_back(f.wallMs);
     gpuTotal.push_back(f.gpu.gpuTotalMs);

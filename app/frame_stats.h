@@ -20,7 +20,16 @@ struct FrameRecord {
   /// gpu::relativeChange of the receivers' radiance against the frame before (NaN: first frame).
   double receiverChange = std::numeric_limits<double>::quiet_NaN();
   std::vector<glm::vec3> pointLights;  ///< where the point lights stood (flames move with their candle)
+  /// Parameters whose value changed since the frame before (--script, the view's panel), {key: value}.
+  nlohmann::json changed = nlohmann::json::object();
+  /// The radiosity maps after this frame (null when none): K, F accumulated, their bytes.
+  nlohmann::json sss;
 };
+
+/// The radiosity maps' state after a frame, for FrameRecord::sss (null when the renderer has none).
+nlohmann::json mapsRecord(const sss::Renderer& renderer);
+/// {key: new value} of every parameter whose value differs between two registry snapshots.
+nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after);
 
 struct RunRecord {
   std::string command;

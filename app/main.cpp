@@ -55,6 +55,16 @@ int main(int argc, char** argv) {
   auto* viewCmd = app.add_subcommand("view", "open the preset in a window (the default command)");
   addSceneOptions(*viewCmd, view.scene);
   viewCmd->add_option("--frames", view.frames, "close after this many frames (0: when the window closes)");
+  viewCmd->add_option("--screenshot", view.screenshots, "after the last frame save FILE.png (the window, panel included) or FILE.exr (the radiance); repeatable");
+  viewCmd->add_option("--save-preset", view.savePreset, "after the last frame save a preset that `capture --preset FILE` renders as shown");
+  viewCmd->add_option("--script", view.script, "timed commands, e.g. `frame 5 set sss.maps=8` (docs/view.md)");
+  viewCmd->add_option("--stats", view.stats, "write stats.json of the run (per frame: timings, changed parameters, maps)");
+  viewCmd->add_option("--reference", view.reference, "REF.exr for the difference debug view (e.g. from `tallow reference`)");
+  viewCmd->add_option("--debug-view", view.debugView, "start in a debug view: final, gbuffer-position[:L[:F]], gbuffer-normal[:L[:F]], map[:K], coverage, vpl, wireframe, difference");
+  viewCmd->add_option("--fps", view.fps, "advance the animation by 1/fps per frame instead of by wall time");
+  viewCmd->add_option("--time", view.timeS, "animation time of the first frame [s] (default: the preset's start_s)");
+  viewCmd->add_flag("--paused", view.paused, "start with the animation paused");
+  viewCmd->add_flag("--no-panel", view.hidePanel, "hide the ImGui panel");
 
   tallow::app::CaptureOptions capture;
   auto* captureCmd = app.add_subcommand("capture", "render frames headless into PNG, EXR and stats.json");
@@ -66,6 +76,8 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--gl", capture.gl, "OpenGL context: osmesa (default) or egl")
       ->check(CLI::IsMember({"osmesa", "egl"}));
   captureCmd->add_flag("--exr-float", capture.exrFloat, "write 32-bit float EXR channels instead of half");
+  captureCmd->add_option("--script", capture.script, "timed parameter changes, e.g. `frame 5 set sss.maps=8` (docs/view.md)");
+  captureCmd->add_option("--video", capture.video, "also encode the frames into a video with ffmpeg (.mp4, .mov, .mkv, .webm)");
 
   tallow::app::ReferenceOptions reference;
   auto* referenceCmd = app.add_subcommand("reference", "CPU ground truth (Embree, TBB): the capture image by Monte Carlo integration of the BSSRDF");

@@ -2,7 +2,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <memory>
+#include <stdexcept>
 #include <type_traits>
 
 #include "app/input_error.h"
@@ -59,6 +61,100 @@ Param bind(Param p, Field field) {
 Param withDefault(Param p, json value) {
   p.defaultValue = std::move(value);
   return p;
+}
+
+/// Parameters the view panel needs to edit the scene beyond the preset's values (issue 9): the
+/// first object's material coefficients, the first light's type, an orthographic camera's height.
+void addSceneEditParams(Registry& r) {
+  // The first object's coefficients one by one (mm⁻¹, per band); checked by sss::validateMaterial
+  // as a preset's are. A change renames the material "custom"; setting the value it has keeps the
+  // name (a saved preset re-applies every value).
+  const auto material = [&r](std::string key, std::string type, std::string units, std::string help, double min,
+                             double max, auto field) {
+    Param p = declare(std::move(key), std::move(type), std::move(units), std::move(help), min, max);
+    p.getter = [field](const Config& c) -> json {
+      if (c.scene.objects.empty() || !c.scene.objects.front().translucent) return json(nullptr);
+      const auto& v = field(c.scene.objects.front().material);
+      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, float>) return floatToJson(v);
+      else return toJson(v);
+    };
+    p.setter = [field](Config& c, const json& v) {
+      sss::SceneObject& object = firstObject(c);
+      if (!object.translucent) throw InputError("the first object is opaque (give it a material first)");
+      sss::Material m = object.material;
+      auto& slot = field(m);
+      using T = std::decay_t<decltype(slot)>;
+      T value{};
+      if constexpr (std::is_same_v<T, float>) value = v.get<float>();
+      else value = toVec3(v);
+      if (value == slot) return;
+      slot = value;
+      try {
+        sss::validateMaterial(m);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
+      }
+      m.name = "custom";
+      m.source.clear();
+      object.material = m;
+    };
+    r.add(std::move(p));
+  };
+  constexpr double kMaxCoefficient = 1e6;  // mm⁻¹, as a preset's coefficients
+  material("material.sigma_a", "vec3", "mm⁻¹", "Absorption coefficient σ_a of the first object, per band.", 0,
+           kMaxCoefficient, [](auto& m) -> auto& { return m.sigma_a; });
+  material("material.sigma_s", "vec3", "mm⁻¹", "Scattering coefficient σ_s of the first object, per band.", 0,
+           kMaxCoefficient, [](auto& m) -> auto& { return m.sigma_s; });
+  material("material.g", "vec3", "", "Henyey-Greenstein mean cosine g of the first object, per band; |g| < 1.", -1, 1,
+           [](auto& m) -> auto& { return m.g; });
+  material("material.eta", "float", "", "Relative index of refraction η (inside / outside) of the first object.", 0,
+           10, [](auto& m) -> auto& { return m.eta; });
+
+  {
+    Param p = declare("light.type", "enum", "",
+                      "Kind of the first light. A directional light becomes a point light at its direction from the "
+                      "camera target, as far as the camera is, with the intensity that keeps the irradiance at the "
+                      "target (I = E d²); a point light becomes a directional light toward where it stood, E = I / d².");
+    p.choices = {"directional", "point"};
+    p.getter = [](const Config& c) {
+      if (c.scene.lights.empty()) return json(nullptr);
+      return json(c.scene.lights.front().kind == sss::LightKind::Point ? "point" : "directional");
+    };
+    p.setter = [](Config& c, const json& v) {
+      sss::Light& light = firstLight(c);
+      const sss::LightKind kind = v.get<std::string>() == "point" ? sss::LightKind::Point : sss::LightKind::Directional;
+      if (kind == light.kind) return;
+      const glm::vec3 target = c.scene.camera.target;
+      const float d = std::max(glm::length(c.scene.camera.position - target), 1e-3f);
+      if (kind == sss::LightKind::Point) {
+        light.position = target + d * light.direction;
+        light.intensity *= d * d;
+      } else {
+        if (light.follow >= 0)
+          throw InputError("the first light follows a candle's flame; pin it with light.position first");
+        const glm::vec3 toLight = light.position - target;
+        const float r = glm::length(toLight);
+        if (!(r > 0.0f)) throw InputError("the point light stands at the camera target: no direction to keep");
+        light.direction = toLight / r;
+        light.intensity /= r * r;
+      }
+      light.kind = kind;
+      light.follow = -1;
+    };
+    r.add(std::move(p));
+  }
+  {
+    Param p = declare("camera.height", "float", "m", "Height of the view of an orthographic camera.", 1e-5,
+                      kMaxCoordinate);
+    p.getter = [](const Config& c) {
+      return c.scene.camera.orthographic ? floatToJson(c.scene.camera.orthoHeight) : json(nullptr);
+    };
+    p.setter = [](Config& c, const json& v) {
+      if (!c.scene.camera.orthographic) throw InputError("the camera is perspective (it has a field of view, not a height)");
+      c.scene.camera.orthoHeight = v.get<float>();
+    };
+    r.add(std::move(p));
+  }
 }
 
 }  // namespace
@@ -493,6 +589,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     p.setter = [](Config& c, const json& v) { c.scene.ambient = toVec3(v); };
     r.add(std::move(p));
   }
+  addSceneEditParams(r);
   return r;
 }
 

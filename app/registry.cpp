@@ -181,9 +181,12 @@ void Registry::setFromString(Config& config, std::string_view assignment) const 
   if (eq == std::string_view::npos)
     throw InputError("expected key=value, got " + quote(assignment));
   const std::string_view key = trim(assignment.substr(0, eq));
-  const std::string_view text = trim(assignment.substr(eq + 1));
-  const Param& p = require(key);
+  set(config, key, parseValue(key, assignment.substr(eq + 1)));
+}
 
+json Registry::parseValue(std::string_view key, std::string_view valueText) const {
+  const Param& p = require(key);
+  const std::string_view text = trim(valueText);
   json value;
   if (p.type == "bool") {
     if (text == "true" || text == "1" || text == "on") value = true;
@@ -212,7 +215,7 @@ void Registry::setFromString(Config& config, std::string_view assignment) const 
       rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
     }
   }
-  set(config, p.key, value);
+  return value;
 }
 
 json Registry::get(const Config& config, std::string_view key) const { return require(key).getter(config); }

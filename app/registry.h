@@ -55,6 +55,10 @@ class Registry {
   /// `key=value` as given to --set; the value is read by the parameter's type: bool
   /// true/false/1/0/on/off, int and float as numbers, enum as the bare choice, vec3 as "x,y,z".
   void setFromString(Config& config, std::string_view assignment) const;
+  /// The value text of `key=value` read by the parameter's type as setFromString reads it, not yet
+  /// checked against range or choices (checkParamValue does that). Throws InputError "<key>: …" for
+  /// an unknown key or text that is not of the type.
+  nlohmann::json parseValue(std::string_view key, std::string_view valueText) const;
 
   /// The current value (see Param::getter). Throws InputError on an unknown key.
   nlohmann::json get(const Config& config, std::string_view key) const;

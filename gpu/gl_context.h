@@ -67,6 +67,7 @@ class GlContext {
 };
 
 /// True when a window can be opened: an X11 or Wayland display is named and GLFW can reach it.
+/// Leaves GLFW initialised when it returns true (the GLFW context's destructor terminates it).
 bool displayAvailable();
 
 }  // namespace tallow::gpu

@@ -73,9 +73,10 @@ bool displayAvailable() {
   const char* x11 = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((!x11 || !*x11) && (!wayland || !*wayland)) return false;
-  if (!initGlfw()) return false;
-  glfwTerminate();
-  return true;
+  // GLFW stays initialised (the window's context reuses it; glfwInit is then a no-op): closing the
+  // display connection here would make a server that resets when its last client leaves (Xvfb's
+  // default) refuse the window's connection, made a moment later, while it resets.
+  return initGlfw();
 }
 
 namespace detail {

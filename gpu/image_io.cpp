@@ -548,8 +548,7 @@ Image readExrPixels(Imf::InputFile& file, const ExrPartInfo& layout) {
 // -----------------------------------------------------------------------------------------------
 // PNG
 
-void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap) {
-  checkPixelCount(path, image);
+std::vector<std::uint8_t> toneMappedRgb8(const Image& image, const ToneMapSettings& toneMap) {
   constexpr int kChannels = 3;
   constexpr float kMaxByte = 255.0f;
   std::vector<std::uint8_t> bytes(image.pixels.size() * kChannels);
@@ -561,13 +560,25 @@ void writePng(const std::filesystem::path& path, const Image& image, const ToneM
       bytes[i * kChannels + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(v * kMaxByte));
     }
   }
+  return bytes;
+}
+
+void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap) {
+  checkPixelCount(path, image);
+  writePngRgb8(path, image.width, image.height, toneMappedRgb8(image, toneMap));
+}
+
+void writePngRgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgb) {
+  if (width < 1 || height < 1 || rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3)
+    throw std::runtime_error("cannot write " + path.string() + ": " + std::to_string(rgb.size()) +
+                             " bytes are not an RGB image of " + std::to_string(width) + "x" + std::to_string(height));
   writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
     png_image png{};
     png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(image.width);
-    png.height = static_cast<png_uint_32>(image.height);
+    png.width = static_cast<png_uint_32>(width);
+    png.height = static_cast<png_uint_32>(height);
     png.format = PNG_FORMAT_RGB;
-    if (!png_image_write_to_file(&png, tmp.c_str(), 0, bytes.data(), 0, nullptr)) {
+    if (!png_image_write_to_file(&png, tmp.c_str(), 0, rgb.data(), 0, nullptr)) {
       const std::string message = png.message;
       png_image_free(&png);
       throw std::runtime_error("cannot write " + path.string() + ": " + oneLine(message));

@@ -7,6 +7,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "gpu/image.h"
 #include "gpu/tonemap.h"
@@ -19,6 +20,10 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
 
 /// Tone maps each pixel with toneMapToSrgb and stores 8-bit RGB, round(v × 255). Alpha is dropped.
 void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap);
+/// The bytes writePng stores: 8-bit sRGB, RGB interleaved, top row first.
+std::vector<std::uint8_t> toneMappedRgb8(const Image& image, const ToneMapSettings& toneMap);
+/// Writes 8-bit RGB bytes already display-encoded (e.g. a window read back), top row first.
+void writePngRgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgb);
 
 /// Reads any PNG (grey, grey+alpha, palette, RGB, RGBA; 1–16 bits) into RGBA. Values are returned
 /// as stored — byte / 255, or word / 65535 for 16-bit files — i.e. still sRGB-encoded, NOT

@@ -1,5 +1,6 @@
 #include "gpu/readback.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace tallow::gpu {
@@ -30,6 +31,28 @@ Image readTexture(const Texture& texture) {
                     image.pixels.data());
   flipRows(image);
   return image;
+}
+
+}  // namespace tallow::gpu
+
+namespace tallow::gpu {
+
+std::vector<std::uint8_t> readWindowRgb8(int width, int height) {
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  GLint previous = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+  // GL's row 0 is the bottom; files store the top row first.
+  const std::size_t row = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height / 2; ++y)
+    std::swap_ranges(rgb.begin() + static_cast<std::ptrdiff_t>(y * row), rgb.begin() + static_cast<std::ptrdiff_t>((y + 1) * row),
+                     rgb.begin() + static_cast<std::ptrdiff_t>((height - 1 - y) * row));
+  return rgb;
 }
 
 }  // namespace tallow::gpu

@@ -19,6 +19,8 @@ packages=(
   libgtest-dev clang libclang-rt-14-dev xvfb xauth
   # plots of `tallow probe profile` and docs/
   gnuplot-nox
+  # `tallow capture --video` and its test (ffprobe reads the video back)
+  ffmpeg
 )
 
 missing=()

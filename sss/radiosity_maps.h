@@ -110,6 +110,9 @@ class RadiosityMaps {
   const gpu::Texture& maps() const { return maps_; }
   const gpu::Texture& mapDepth() const { return mapDepth_; }
   const gpu::Texture& directionalPositions() const { return dirPosition_; }
+  /// The point lights' G-buffers: one cube per point light (scene order of the point lights).
+  const gpu::Texture& pointPositions() const { return pointPosition_; }
+  const gpu::Texture& pointNormals() const { return pointNormal_; }
   std::size_t bytes() const;
   /// Everything gather.glsl reads (lights, G-buffers on texture units firstUnit … firstUnit + 3,
   /// materials, model, N, the frame seed), for a program that includes it: the map passes, and

@@ -69,6 +69,10 @@ class Renderer {
   /// receiver of the VPLs' light), 0 elsewhere. Reads the frame back.
   std::vector<std::uint8_t> receiverMask() const;
   const gpu::Texture& radiance() const { return radiance_; }
+  /// The camera target's coverage (Algorithm 1: r translucent, g seen by a map, b opaque) and depth
+  /// attachments of the last frame, for the view window's debug views.
+  const gpu::Texture& coverage() const { return coverage_; }
+  const gpu::Texture& depth() const { return depth_; }
   /// Meshes, primitives and the last extraction of every field object; the field count reads a
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
   std::size_t triangleCount() const { return geometry_.triangleCount() + fields_->triangleCount(); }
