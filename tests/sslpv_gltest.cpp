@@ -237,7 +237,9 @@ TEST(Sslpv, SlabAgainstTheDipoleTotalAndTheReducedRecursion) {
       // their envelope: some light in every band, less than R_d, and ordered r > g > b.
       EXPECT_GT(measured / dipole, exitance == "face" ? 0.02 : 0.1) << "band " << c;
       EXPECT_LT(measured / dipole, 1.0) << "band " << c;
-      if (c > 0) EXPECT_LT(measured, centreMean(image, c - 1)) << "band " << c;
+      if (c > 0) {
+        EXPECT_LT(measured, centreMean(image, c - 1)) << "band " << c;
+      }
     }
   }
 }
@@ -418,7 +420,9 @@ TEST(Sslpv, FiniteOnHardCases) {
         for (int k = 0; k < 4; ++k) ASSERT_TRUE(std::isfinite(cell[k]));
         flux += cell[0];
       }
-    if (c.lit) EXPECT_GT(flux, 0.0);
+    if (c.lit) {
+      EXPECT_GT(flux, 0.0);
+    }
   }
 }
 
