@@ -4,7 +4,8 @@
 # and of `tallow probe maps` (issue 5, point 9): the cost of the scattered radiosity maps against
 # K (maps) and N (samples) on the bunny; and of the issue-6 experiments (scripts/results_bench.py:
 # `tallow bench` against `tallow reference`, `tallow capture` for occupancy and coverage) and the
-# issue-7 experiments (VPLs against the reference's emergent light, their cost, flicker). Every
+# issue-7 experiments (VPLs against the reference's emergent light, their cost, flicker) and the
+# issue-8 comparison of the four methods (radiosity maps, no-cache, SSLPV, image-space). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.

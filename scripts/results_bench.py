@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 6's experiments (speed against error) and the docs/RESULTS.md section they become.
+"""Issues 6-8's experiments (speed against error, VPLs, peers) and the docs/RESULTS.md sections they become.
 
   results_bench.py run DIR [--quick]          runs every experiment into DIR (TALLOW: the binary)
   results_bench.py report DIR MD IMAGES       appends the section to MD, copies figures to IMAGES
@@ -8,7 +8,9 @@ Called by scripts/results.sh; every number in the section comes from the JSON th
 The experiments follow the radiosity-maps paper: Figs. 6/8 (converged against the reference for
 three materials), Fig. 9 (equal time at three scales), Fig. 11 (occupancy at which the maps and the
 no-cache gather cost the same), Fig. 13 (coverage against K), and the grazing-incidence and
-point-light fixes before and after.
+point-light fixes before and after. Issue 7's VPL experiments (receivers against the reference's
+emergent light, shadows, costs, flicker, the paper's candle settings) and issue 8's peers (the four
+methods on the bunny at three scales, the blob and the candle holder) follow.
 """
 import json
 import math
@@ -83,7 +85,7 @@ def run(work, quick):
     for scale in SCALES:
         f = scale / 0.1
         bench(f"{work}/scale_{scale}", "bunny", small,
-              ["--methods", "radiosity-maps,no-cache", "--set", f"sss.frames={frames}", "--set", f"scale={scale}",
+              ["--methods", ",".join(PEER_METHODS), "--set", f"sss.frames={frames}", "--set", f"scale={scale}",
                "--set", "camera.position=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[0]),
                "--set", "camera.target=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[1]), "--equal-time"], ref_loose)
     # Fig. 11 and target 4: cost against screen occupancy at 1024x1024 (the chocolate-milk blob,
@@ -99,6 +101,22 @@ def run(work, quick):
         tallow("capture", "--preset", "bunny", "--size", "320x240", "--frames", "1", "--set", f"sss.maps={k}",
                "--set", "sss.samples=1", "--out", f"{work}/coverage/k{k}")
     run_vpl(work, quick)
+    run_peers(work, quick)
+
+
+# Issue 8: every method on the shared scenes. The bunny's three scales are the equal-time runs above;
+# the blob (frozen at one time, so the progressive methods converge) and the candle holder (a point light
+# inside a hollow cylinder) are run here.
+PEER_METHODS = ["radiosity-maps", "no-cache", "sslpv", "image-space"]
+PEER_SCENES = [("blob", ["--time", "2.5"]), ("candle-holder", [])]
+
+
+def run_peers(work, quick):
+    """Issue 8: the four methods side by side on the blob and the candle holder."""
+    for preset, extra in PEER_SCENES:
+        bench(f"{work}/peers_{preset}", preset, "64x48" if quick else "160x120",
+              ["--methods", ",".join(PEER_METHODS), "--set", "sss.frames=" + ("4" if quick else "16"), *extra],
+              ["--ref-spp", "2"] if quick else ["--ref-rel-error", "0.04"])
 
 
 VPL_COUNTS = [50, 80, 200]
@@ -426,6 +444,7 @@ def report(work, md, images):
             pct(crossover), "a smaller occupancy than the paper's" if crossover < 0.058 else "**a larger occupancy than the paper's**"))
     add("")
     report_vpl(work, add, images, rel_images)
+    report_peers(work, add, images, rel_images)
     add("Rerun: `bash scripts/results.sh`; the experiments and their commands are in `scripts/results_bench.py`.")
     with open(md, "a") as f:
         f.write("\n".join(L) + "\n")
@@ -524,6 +543,99 @@ def report_vpl(work, add, images, rel_images):
         % (fmt(median(walls), 0), st["gl"]["GL_RENDERER"]))
     add("for this run). Passes (median GPU ms): " + ", ".join(
         "%s %s" % (k, fmt(v, 1)) for k, v in st["summary"]["gpu_ms_median"].items()) + ".")
+    add("")
+
+
+def peer_runs(work):
+    """(scene label, bench.json) of every scene that ran all methods."""
+    runs = [("bunny %g m" % scale, load(f"{work}/scale_{scale}/bench.json")) for scale in SCALES]
+    runs += [(preset, load(f"{work}/peers_{preset}/bench.json")) for preset, _ in PEER_SCENES]
+    return runs
+
+
+def peers_plot(runs, images, name):
+    """One plot of speed against error: every method on every scene, first frame (filled) and converged
+    frame (open), through gnuplot (a note instead when gnuplot is missing)."""
+    if shutil.which("gnuplot") is None:
+        return False
+    data = os.path.join(images, name + ".csv")
+    with open(data, "w") as f:
+        for label, b in runs:
+            for row in b["rows"]:
+                conv = row.get("median_converged_wall_ms") or row.get("median_wall_ms")
+                f.write("%s,%s,%.6g,%.6g,%.6g,%.6g\n" % (label, row["method"], row["first_wall_ms"],
+                                                         row["first_rel_rmse"], conv, row["last_rel_rmse"]))
+    styles = {"radiosity-maps": 7, "no-cache": 5, "sslpv": 9, "image-space": 13}
+    plots = []
+    for i, method in enumerate(PEER_METHODS):
+        sel = "(strcol(2) eq '%s' ? $%%d : NaN)" % method
+        plots.append("'%s' using 3:%s with points pt %d ps 1.6 lc %d title '%s, first frame'"
+                     % (data, sel % 4, styles[method], i + 1, method))
+        plots.append("'%s' using 5:%s with points pt %d ps 1.6 lc %d title '%s, converged'"
+                     % (data, sel % 6, styles[method] - 1, i + 1, method))
+    script = "\n".join([
+        "set datafile separator ','",
+        "set terminal pngcairo size 900,600 font ',11'",
+        "set output '%s.tmp.png'" % os.path.join(images, name),
+        "set logscale xy", "set grid",
+        "set xlabel 'frame time [ms] (llvmpipe)'", "set ylabel 'relative RMSE against the reference'",
+        "set key outside right top",
+        "plot " + ", ".join(plots), ""])
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    os.replace(os.path.join(images, name + ".tmp.png"), os.path.join(images, name + ".png"))
+    os.remove(data)
+    return True
+
+
+def report_peers(work, add, images, rel_images):
+    """Issue 8: all four methods on the same scenes, one table and one plot, and where each wins."""
+    runs = peer_runs(work)
+    add("## The peers side by side (issue 8)")
+    add("")
+    add("Every method on the same scenes, lights and materials, each against the same `tallow reference`: the")
+    add("scattered radiosity maps (`radiosity-maps`), their gather per camera pixel without a cache (`no-cache`,")
+    add("the paper's Fig. 11 variant), subsurface light propagation volumes (`sslpv`, docs/sslpv.md) and")
+    add("image-space importance sampling of the dipole (`image-space`, docs/image-space.md). The bunny runs are")
+    add("the equal-time runs above; the blob is frozen at t = 2.5 s. `first` is the first frame after a")
+    add("restart (what an animated scene pays every frame), `converged` the last frame of the run (a still")
+    add("scene, after the progressive methods have accumulated). Device: `%s`; times are llvmpipe's, so compare"
+        % runs[0][1]["gpu"]["GL_RENDERER"])
+    add("them as ratios within a scene.")
+    add("")
+    add("| scene | method | first frame [ms] | first frame rel. RMSE | converged frame [ms] | converged rel. RMSE | mean L / reference | reference ε |")
+    add("|---|---|---:|---:|---:|---:|---:|---:|")
+    wins = []
+    for label, b in runs:
+        rows = [r for r in b["rows"] if r["method"] in PEER_METHODS]
+        for row in rows:
+            add("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                label, row["method"], fmt(row["first_wall_ms"], 1), pct(row["first_rel_rmse"]),
+                fmt(row.get("median_converged_wall_ms") or row.get("median_wall_ms"), 1), pct(row["last_rel_rmse"]),
+                fmt(row["last_error"].get("mean_ratio")), pct(reference_error(b, row))))
+        if rows:
+            fastest = min(rows, key=lambda r: r["first_wall_ms"])
+            first = min(rows, key=lambda r: r["first_rel_rmse"])
+            conv = min(rows, key=lambda r: r["last_rel_rmse"])
+            # Pareto front of (first-frame time, first-frame error): no other method is both faster and closer.
+            front = [r["method"] for r in rows if not any(
+                o is not r and o["first_wall_ms"] <= r["first_wall_ms"] and o["first_rel_rmse"] <= r["first_rel_rmse"]
+                for o in rows)]
+            wins.append("- **%s**: fastest first frame %s (%s ms); lowest first-frame error %s (%s); lowest converged"
+                        " error %s (%s); not beaten on both time and error by another method: %s." % (
+                            label, fastest["method"], fmt(fastest["first_wall_ms"], 0), first["method"],
+                            pct(first["first_rel_rmse"]), conv["method"], pct(conv["last_rel_rmse"]), ", ".join(front)))
+    add("")
+    add("Where each method wins (from the table):")
+    add("")
+    for w in wins:
+        add(w)
+    add("")
+    if peers_plot(runs, images, "peers_speed_error"):
+        add("Speed against error, every scene (filled: first frame; open: converged):")
+        add("")
+        add("![speed against error, all methods](%s/peers_speed_error.png)" % rel_images)
+    else:
+        add("(gnuplot was not installed when this was generated: no plot.)")
     add("")
 
 
