@@ -630,6 +630,13 @@ def report_peers(work, add, images, rel_images):
     for w in wins:
         add(w)
     add("")
+    add("The 0.1 m bunny, each method's first frame: reference | the method's frame | difference | reference at equal")
+    add("time (the pictures of the equal-time runs above):")
+    add("")
+    for row in load(f"{work}/scale_0.1/bench.json")["rows"]:
+        if row["method"] in PEER_METHODS:
+            add("![%s](%s/scales_%s_0.1.png)" % (row["method"], rel_images, row["row"]))
+    add("")
     if peers_plot(runs, images, "peers_speed_error"):
         add("Speed against error, every scene (filled: first frame; open: converged):")
         add("")

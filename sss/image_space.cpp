@@ -151,25 +151,6 @@ void ImageSpaceSss::ensureTargets(int width, int height) {
   accumTarget_.checkComplete("image-space accumulation");
 }
 
-void ImageSpaceSss::setMaterialUniforms(gpu::Program& p, const Scene& scene) const {
-  std::vector<glm::vec3> sigmaA(kMaxTranslucentObjects, glm::vec3(0.0f)),
-      sigmaS(kMaxTranslucentObjects, glm::vec3(1.0f)), g(kMaxTranslucentObjects, glm::vec3(0.0f));
-  std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const int slot = slots_[i];
-    if (slot < 0) continue;
-    const Material& m = scene.objects[i].material;
-    sigmaA[static_cast<std::size_t>(slot)] = m.sigma_a;
-    sigmaS[static_cast<std::size_t>(slot)] = m.sigma_s;
-    g[static_cast<std::size_t>(slot)] = m.g;
-    eta[static_cast<std::size_t>(slot)] = m.eta;
-  }
-  p.set("uSigmaA", sigmaA.data(), kMaxTranslucentObjects);
-  p.set("uSigmaS", sigmaS.data(), kMaxTranslucentObjects);
-  p.set("uG", g.data(), kMaxTranslucentObjects);
-  glProgramUniform1fv(p.id(), p.location("uEta"), kMaxTranslucentObjects, eta.data());
-}
-
 void ImageSpaceSss::renderGBuffer(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                                   const CameraView& camera, const ShadowPass& shadows, const std::string& stateKey) {
   key_ = stateKey;
@@ -219,7 +200,7 @@ void ImageSpaceSss::scatter(const Scene& scene, const RenderSettings& settings, 
 
   // The frame's pattern (the shared lines of shaders/image_space/sampling.glsl on the GPU).
   gpu::Program& pattern = patternProgram_;
-  setMaterialUniforms(pattern, scene);
+  setSlotMaterialUniforms(pattern, scene, slots_);
   pattern.set("uSlots", slots);
   pattern.set("uSets", sets);
   pattern.set("uSamples", s.samples);
@@ -234,7 +215,7 @@ void ImageSpaceSss::scatter(const Scene& scene, const RenderSettings& settings, 
 
   // The estimate per pixel.
   gpu::Program& p = scatterProgram_;
-  setMaterialUniforms(p, scene);
+  setSlotMaterialUniforms(p, scene, slots_);
   p.set("uPosition", 0);
   p.set("uNormal", 1);
   p.set("uIrradiance", 2);

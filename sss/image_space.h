@@ -86,7 +86,6 @@ class ImageSpaceSss {
 
  private:
   void ensureTargets(int width, int height);
-  void setMaterialUniforms(gpu::Program& program, const Scene& scene) const;
 
   gpu::Program gbufferProgram_, patternProgram_, scatterProgram_, combineProgram_;
   gpu::Texture position_, normal_, irradiance_, depth_;  ///< pass 1

@@ -407,15 +407,13 @@ void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene, GLuint
   (np > 0 ? pointNormal_ : dummyPoint_).bind(kPointNormalUnit);
 }
 
-void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const RenderSettings& settings,
-                                      GLuint firstUnit, int frame) const {
-  const SssSettings& s = settings.sss;
-  setLightUniforms(p, scene, firstUnit);
+void setSlotMaterialUniforms(gpu::Program& p, const Scene& scene, const std::vector<int>& slots) {
+  // Unused slots get a harmless medium (σ_s = 1, η = 1) so that no shader divides by zero.
   std::vector<glm::vec3> sigmaA(kMaxTranslucentObjects, glm::vec3(0.0f)), sigmaS(kMaxTranslucentObjects, glm::vec3(1.0f)),
       g(kMaxTranslucentObjects, glm::vec3(0.0f));
   std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const int slot = slots_[i];
+  for (std::size_t i = 0; i < scene.objects.size() && i < slots.size(); ++i) {
+    const int slot = slots[i];
     if (slot < 0) continue;
     const Material& m = scene.objects[i].material;
     sigmaA[static_cast<std::size_t>(slot)] = m.sigma_a;
@@ -427,6 +425,13 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
   p.set("uSigmaS", sigmaS.data(), kMaxTranslucentObjects);
   p.set("uG", g.data(), kMaxTranslucentObjects);
   glProgramUniform1fv(p.id(), p.location("uEta"), kMaxTranslucentObjects, eta.data());
+}
+
+void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const RenderSettings& settings,
+                                      GLuint firstUnit, int frame) const {
+  const SssSettings& s = settings.sss;
+  setLightUniforms(p, scene, firstUnit);
+  setSlotMaterialUniforms(p, scene, slots_);
   p.set("uBssrdfModel", static_cast<int>(s.model));
   p.set("uSamples", s.samples);
   p.set("uFrame", frame);

@@ -53,6 +53,10 @@ int mapCount(const Scene& scene, const RenderSettings& settings);
 void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry, const std::vector<int>& slots,
                             const gpu::Buffer& layerViews, int instances);
 
+/// The per-slot material arrays of shaders/sss/gather.glsl (uSigmaA, uSigmaS, uG [mm⁻¹], uEta), from
+/// the materials of the scene objects by their translucent slot (slots[objectIndex], −1: opaque).
+void setSlotMaterialUniforms(gpu::Program& program, const Scene& scene, const std::vector<int>& slots);
+
 /// The translucent objects' bounding sphere in world units (centre, radius); radius 0 when none.
 struct BoundingSphere {
   glm::vec3 centre{0.0f};
