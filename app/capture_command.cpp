@@ -37,6 +37,17 @@ void checkWritableFolder(const std::filesystem::path& dir) {
 }
 
 namespace {
+/// Sums `more` into `total` pass by pass (passes absent from `total` are appended).
+void addTimings(sss::FrameTimings& total, const sss::FrameTimings& more) {
+  for (const gpu::PassTiming& p : more.passes) {
+    auto it = std::find_if(total.passes.begin(), total.passes.end(),
+                           [&](const gpu::PassTiming& q) { return q.name == p.name; });
+    if (it == total.passes.end()) total.passes.push_back(p);
+    else it->gpuMs += p.gpuMs;
+  }
+  total.gpuTotalMs += more.gpuTotalMs;
+}
+
 std::string frameName(int index, const char* extension) {
   char name[64];
   std::snprintf(name, sizeof name, "frame_%04d.%s", index, extension);
@@ -48,6 +59,8 @@ int runCapture(const CaptureOptions& options) {
   if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
   if (options.frames < 1) throw InputError("--frames: must be at least 1");
   if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
+  if (options.accumulate < 1 || options.accumulate > kMaxAccumulate)
+    throw InputError("--accumulate: must be between 1 and " + std::to_string(kMaxAccumulate));
   LoadedScene loaded = loadScene(options.scene);
   Config& config = loaded.config;
   const std::filesystem::path out(options.outDir);
@@ -88,6 +101,7 @@ int runCapture(const CaptureOptions& options) {
   run.width = config.render.width;
   run.height = config.render.height;
   run.plan = sss::Renderer::plan(config.scene, config.render);
+  run.accumulate = options.accumulate;
   run.parameters = registry.snapshot(config);
   if (options.scene.explain)
     for (const auto& p : run.plan) std::printf("pass %-20s %s\n", p.name.c_str(), p.reason.c_str());
@@ -117,7 +131,10 @@ int runCapture(const CaptureOptions& options) {
     frame.timeS = playback.rawTime();
     const auto start = std::chrono::steady_clock::now();
     try {
+      // With --accumulate N the frame's time is rendered N times (a paused window's progressive
+      // accumulation); its GPU timings are the sums over those renders, like its wall time.
       frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+      for (int a = 1; a < options.accumulate; ++a) addTimings(frame.gpu, renderer.render(config.scene, config.render, frame.timeS));
     } catch (const std::invalid_argument& e) {
       if (where.empty()) throw;
       throw InputError(where + ": " + e.what());

@@ -9,6 +9,9 @@
 
 namespace tallow::app {
 
+/// Upper bound of capture --accumulate (a guard against a typo that would run for hours).
+inline constexpr int kMaxAccumulate = 4096;
+
 struct CaptureOptions {
   SceneOptions scene;
   std::string gl = "osmesa";
@@ -19,6 +22,9 @@ struct CaptureOptions {
   bool exrFloat = false;  ///< 32-bit float EXR channels instead of half
   std::string script;     ///< timed parameter changes (app/view_script.h); empty: none
   std::string video;      ///< also encode the frames into this video with ffmpeg; empty: none
+  /// Renders per written frame, all at its time: the progressive methods accumulate over them as
+  /// in a paused window, and the last is written (1: every render is written, the sequence as played).
+  int accumulate = 1;
 };
 
 /// Returns the process exit code; throws InputError / ContextError / ShaderError / runtime_error

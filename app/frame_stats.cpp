@@ -67,6 +67,7 @@ nlohmann::json toJson(const RunRecord& run) {
         {"GL_VERSION", run.gl.version},
         {"GL_SHADING_LANGUAGE_VERSION", run.gl.glsl}}},
       {"resolution", {run.width, run.height}},
+      {"accumulate", run.accumulate},
       {"triangles", run.triangles},
       {"gpu_memory_bytes", run.gpuBytes},
       {"plan", plan},

@@ -41,6 +41,7 @@ struct RunRecord {
   std::size_t gpuBytes = 0;
   std::vector<sss::PlannedPass> plan;
   std::vector<FrameRecord> frames;
+  int accumulate = 1;  ///< renders per frame at its time (capture --accumulate); timings sum them
   nlohmann::json parameters;
   nlohmann::json sss;  ///< radiosity maps of the last frame (null when the method does not run)
 };

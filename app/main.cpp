@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
   captureCmd->add_option("--frames", capture.frames, "number of frames");
   captureCmd->add_option("--time", capture.timeS, "animation time of the first frame [s]");
   captureCmd->add_option("--fps", capture.fps, "frames per second of the sequence");
+  captureCmd->add_option("--accumulate", capture.accumulate,
+                         "renders per frame at its time, the last written: progressive methods accumulate (default 1)");
   captureCmd->add_option("--gl", capture.gl, "OpenGL context: osmesa (default) or egl")
       ->check(CLI::IsMember({"osmesa", "egl"}));
   captureCmd->add_flag("--exr-float", capture.exrFloat, "write 32-bit float EXR channels instead of half");

@@ -26,6 +26,10 @@
 namespace tallow::app {
 
 namespace {
+/// Renders of the one frame that `view` without a display captures: a still frame is what a user
+/// looks at, so the progressive methods accumulate as in a paused window instead of showing one
+/// frame's noise (the candle's maps restart every frame while it melts).
+constexpr int kFallbackAccumulate = 16;
 
 using Clock = std::chrono::steady_clock;
 /// Seconds between two counts of the triangles (the count waits for the GPU).
@@ -119,6 +123,7 @@ int runView(const ViewOptions& options) {
     CaptureOptions capture;
     capture.scene = options.scene;
     capture.outDir = options.fallbackOutDir;
+    capture.accumulate = kFallbackAccumulate;
     return runCapture(capture);
   }
 

@@ -221,6 +221,51 @@ TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out")) << "a window run must not capture";
 }
 
+// --accumulate N renders the frame's time N times and writes the last: the same picture as the N-th
+// frame of a capture whose clock a script pauses at frame 0 (a second path through the same
+// accumulation: Playback's pause), bit for bit, since both render the same frames with the same seeds.
+TEST(Cli, AccumulateWritesThePausedSequencesLastFrame) {
+  test::TempDir dir;
+  const std::vector<std::string> common = {"--preset", "blob", "--size", "48x32", "--set", "sss.maps=4",
+                                           "--set", "sss.map_size=64", "--set", "sss.samples=2"};
+  auto args = [&](std::vector<std::string> a) {
+    a.insert(a.end(), common.begin(), common.end());
+    return a;
+  };
+  const auto accumulated = dir.path() / "accumulated";
+  const auto r = runTallow(args({"capture", "--accumulate", "3", "--out", accumulated.string()}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto script = dir.path() / "pause.txt";
+  std::ofstream(script) << "frame 0 pause\n";
+  const auto paused = dir.path() / "paused";
+  const auto p = runTallow(args({"capture", "--frames", "3", "--script", script.string(), "--out", paused.string()}));
+  ASSERT_EQ(p.exitCode, 0) << p.err;
+
+  EXPECT_EQ(fileCount(accumulated), 3) << "one frame written";
+  const gpu::Image a = gpu::readExr(accumulated / "frame_0000.exr");
+  const gpu::Image third = gpu::readExr(paused / "frame_0002.exr");
+  const gpu::Image first = gpu::readExr(paused / "frame_0000.exr");
+  ASSERT_EQ(a.pixels.size(), third.pixels.size());
+  int differsFromFirst = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(a.pixels[i][c], third.pixels[i][c]) << "pixel " << i;
+    differsFromFirst += a.pixels[i] != first.pixels[i] ? 1 : 0;
+  }
+  EXPECT_GT(differsFromFirst, 0) << "three accumulated renders differ from one";
+  std::ifstream in(accumulated / "stats.json");
+  const auto stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["accumulate"], 3);
+  ASSERT_EQ(stats["frames"].size(), 1u);
+  EXPECT_EQ(stats["frames"][0]["sss"]["frames_accumulated"], 3) << stats["frames"][0]["sss"].dump();
+}
+
+TEST(Cli, AccumulateOutOfRangeIsRefused) {
+  test::TempDir dir;
+  const auto out = dir.path() / "out";
+  expectCleanFailure(runTallow({"capture", "--preset", "blob", "--accumulate", "0", "--out", out.string()}),
+                     "--accumulate: must be between 1 and", out);
+}
+
 TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
   test::TempDir dir;
   const std::string command = "cd " + dir.path().string() + " && env -u DISPLAY -u WAYLAND_DISPLAY " +
@@ -235,6 +280,7 @@ TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
   EXPECT_EQ(stats["preset"]["name"], "candle");
   EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("vpl")) << "the default preset lights the table with VPLs";
   EXPECT_EQ(stats["frames"][0]["time_s"], 12.0) << "the candle's start_s";
+  EXPECT_EQ(stats["accumulate"], 16) << "a still frame: the maps accumulate as in a paused window";
 }
 
 }  // namespace
