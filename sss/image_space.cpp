@@ -168,10 +168,7 @@ void ImageSpaceSss::renderGBuffer(const Scene& scene, const RenderSettings& sett
 
   gpu::Program& p = gbufferProgram_;
   setLightUniforms(p, scene, settings, shadows, kDirectionalShadowUnit, kPointShadowUnit);
-  p.set("uViewProjection", camera.viewProjection);
-  p.set("uCameraPosition", camera.position);
-  p.set("uCameraForward", camera.forward);
-  p.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
+  setCameraUniforms(p, camera);
   PassState state;
   gbufferTarget_.bind();
   glViewport(0, 0, settings.width, settings.height);
@@ -222,10 +219,7 @@ void ImageSpaceSss::scatter(const Scene& scene, const RenderSettings& settings, 
   position_.bind(0);
   normal_.bind(1);
   irradiance_.bind(2);
-  p.set("uViewProjection", camera.viewProjection);
-  p.set("uCameraPosition", camera.position);
-  p.set("uCameraForward", camera.forward);
-  p.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
+  setCameraUniforms(p, camera);
   // A pixel's world size: per metre of distance (perspective) or in metres (orthographic).
   const float height = static_cast<float>(settings.height);
   p.set("uPixelScale", camera.orthographic ? scene.camera.orthoHeight / height

@@ -53,4 +53,11 @@ void setLightUniforms(gpu::Program& p, const Scene& scene, const RenderSettings&
   shadows.bind(directionalShadowUnit, pointShadowUnit);
 }
 
+void setCameraUniforms(gpu::Program& program, const CameraView& camera) {
+  program.set("uViewProjection", camera.viewProjection);
+  program.set("uCameraPosition", camera.position);
+  program.set("uCameraForward", camera.forward);
+  program.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
+}
+
 }  // namespace tallow::sss

@@ -40,10 +40,7 @@ void SurfacePass::render(const Scene& scene, const RenderSettings& settings, con
   auto& p = program_;
   setLightUniforms(p, scene, settings, shadows, kDirectionalShadowUnit, kPointShadowUnit);
   p.set("uAmbient", scene.ambient);
-  p.set("uViewProjection", camera.viewProjection);
-  p.set("uCameraPosition", camera.position);
-  p.set("uCameraForward", camera.forward);
-  p.set("uCameraOrthographic", camera.orthographic ? 1 : 0);
+  setCameraUniforms(p, camera);
   p.set("uSpecular", settings.specular ? 1 : 0);
   p.set("uEnvironment", environment_.id() ? 1 : 0);
   p.set("uEnvMap", static_cast<int>(kEnvironmentUnit));

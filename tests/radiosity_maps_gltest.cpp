@@ -28,6 +28,7 @@
 namespace tallow {
 namespace {
 
+using test::centreMean;
 using test::PresetSession;
 
 /// Level 0 of every layer of a 2D array texture (RGBA32F), layer-major.
@@ -36,15 +37,6 @@ std::vector<glm::vec4> readLayers(const gpu::Texture& t) {
   glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)),
                     texels.data());
   return texels;
-}
-
-/// Mean of a band over the centre square of the image (half its width).
-double centreMean(const gpu::Image& image, int band) {
-  double sum = 0.0;
-  int n = 0;
-  for (int y = image.height / 4; y < 3 * image.height / 4; ++y)
-    for (int x = image.width / 4; x < 3 * image.width / 4; ++x, ++n) sum += image.at(x, y)[band];
-  return sum / n;
 }
 
 // --- The analytic slab ---------------------------------------------------------------------------

@@ -26,17 +26,9 @@ namespace tallow {
 namespace {
 
 namespace sh = sss::sslpv_glsl;
+using test::centreMean;
 using test::PresetSession;
 constexpr double kPi = 3.14159265358979323846;
-
-/// Mean of a band over the centre square of the image (half its width).
-double centreMean(const gpu::Image& image, int band) {
-  double sum = 0.0;
-  int n = 0;
-  for (int y = image.height / 4; y < 3 * image.height / 4; ++y)
-    for (int x = image.width / 4; x < 3 * image.width / 4; ++x, ++n) sum += image.at(x, y)[band];
-  return sum / n;
-}
 
 bool allFinite(const gpu::Image& image) {
   return std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec4& p) {

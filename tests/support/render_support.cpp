@@ -44,4 +44,12 @@ std::string testScene(const std::string& name) {
   return std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/" + name + ".json";
 }
 
+double centreMean(const gpu::Image& image, int band) {
+  double sum = 0.0;
+  int n = 0;
+  for (int y = image.height / 4; y < 3 * image.height / 4; ++y)
+    for (int x = image.width / 4; x < 3 * image.width / 4; ++x, ++n) sum += image.at(x, y)[band];
+  return sum / n;
+}
+
 }  // namespace tallow::test

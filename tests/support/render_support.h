@@ -40,6 +40,10 @@ class PresetSession {
   std::unique_ptr<sss::Renderer> renderer_;
 };
 
+/// Mean of a band over the centre square of the image (half its width and height): the part of a
+/// slab test's picture far from the slab's edges.
+double centreMean(const gpu::Image& image, int band);
+
 /// Path of a test scene in tests/data/.
 std::string testScene(const std::string& name);
 
