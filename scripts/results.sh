@@ -202,4 +202,8 @@ with open(dst, "w") as f:
 PY
 python3 "$root/scripts/results_bench.py" report "$work/bench" "$root/docs/RESULTS.md.tmp" "$root/docs/images/results"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"
+# Pictures of earlier runs that this RESULTS.md no longer shows go.
+for f in "$root/docs/images/results"/*; do
+  grep -qF "images/results/$(basename "$f")" "$root/docs/RESULTS.md" || rm -f "$f"
+done
 echo "results: wrote docs/RESULTS.md"
