@@ -41,16 +41,9 @@ namespace tallow {
 namespace {
 
 using test::centreMean;
+using test::fresnelT;
 using test::PresetSession;
 constexpr double kPi = 3.14159265358979323846;
-
-/// Unpolarised Fresnel transmittance from outside at incidence cos θ, written out independently.
-double fresnelT(double cosTheta, double eta) {
-  const double sinT2 = (1.0 - cosTheta * cosTheta) / (eta * eta), cosT = std::sqrt(1.0 - sinT2);
-  const double rs = (cosTheta - eta * cosT) / (cosTheta + eta * cosT);
-  const double rp = (eta * cosTheta - cosT) / (eta * cosTheta + cosT);
-  return 1.0 - 0.5 * (rs * rs + rp * rp);
-}
 
 const std::vector<std::string> kSlabImageSpace = {"render.width=48", "render.height=48", "method=image-space",
                                                   "image_space.samples=32", "image_space.frames=8"};

@@ -29,6 +29,7 @@ namespace tallow {
 namespace {
 
 using test::centreMean;
+using test::fresnelT;
 using test::PresetSession;
 
 /// Level 0 of every layer of a 2D array texture (RGBA32F), layer-major.
@@ -80,14 +81,6 @@ TEST(RadiosityMaps, NoCacheVariantMatchesTheSlabToo) {
     std::printf("[ maps ] no-cache slab band %d: ratio %.4f\n", c, centreMean(image, c) / expected);
     EXPECT_NEAR(centreMean(image, c) / expected, 1.0, 0.02) << "band " << c;
   }
-}
-
-/// Unpolarised Fresnel transmittance from outside at incidence cos θ, written out independently.
-double fresnelT(double cosTheta, double eta) {
-  const double sinT2 = (1.0 - cosTheta * cosTheta) / (eta * eta), cosT = std::sqrt(1.0 - sinT2);
-  const double rs = (cosTheta - eta * cosT) / (cosTheta + eta * cosT);
-  const double rp = (eta * cosTheta - cosT) / (eta * cosTheta + cosT);
-  return 1.0 - 0.5 * (rs * rs + rp * rp);
 }
 
 TEST(RadiosityMaps, SlabLitObliquelyKeepsLambertsCosineOnce) {

@@ -27,6 +27,7 @@ namespace {
 
 namespace sh = sss::sslpv_glsl;
 using test::centreMean;
+using test::fresnelT;
 using test::PresetSession;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -141,14 +142,6 @@ glm::dvec3 injectedFlux(PresetSession& s, int injectSize) {
     for (const glm::vec4& c : propagation.download(propagation.current()[static_cast<std::size_t>(b)]))
       flux[b] += 2.0 * std::sqrt(kPi) * c[0];
   return flux;
-}
-
-/// Unpolarised Fresnel transmittance from outside at incidence cos θ, written out here.
-double fresnelT(double cosTheta, double eta) {
-  const double sinT2 = (1.0 - cosTheta * cosTheta) / (eta * eta), cosT = std::sqrt(1.0 - sinT2);
-  const double rs = (cosTheta - eta * cosT) / (cosTheta + eta * cosT);
-  const double rp = (eta * cosTheta - cosT) / (eta * cosTheta + cosT);
-  return 1.0 - 0.5 * (rs * rs + rp * rp);
 }
 
 TEST(Sslpv, InjectionCarriesTheTransmittedFluxOfDirectionalAndPointLights) {

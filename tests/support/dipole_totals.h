@@ -11,6 +11,14 @@ inline double normalTransmittance(double eta) {
   return 1.0 - r * r;
 }
 
+/// Unpolarised Fresnel transmittance from outside at incidence cos θ (relative index η > 1).
+inline double fresnelT(double cosTheta, double eta) {
+  const double sinT2 = (1.0 - cosTheta * cosTheta) / (eta * eta), cosT = std::sqrt(1.0 - sinT2);
+  const double rs = (cosTheta - eta * cosT) / (cosTheta + eta * cosT);
+  const double rp = (eta * cosTheta - cosT) / (eta * cosTheta + cosT);
+  return 1.0 - 0.5 * (rs * rs + rp * rp);
+}
+
 /// A = (1 + F_dr)/(1 − F_dr) with Jensen's fit F_dr = −1.440/η² + 0.710/η + 0.668 + 0.0636η.
 inline double jensenBoundaryA(double eta) {
   const double fdr = -1.440 / (eta * eta) + 0.710 / eta + 0.668 + 0.0636 * eta;
