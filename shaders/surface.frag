@@ -2,17 +2,17 @@
 // Opaque surfaces: Lambertian reflection of every light (with shadows), of the VPLs' emergent light
 // (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
 // L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1; with uSslpv, B = π L_i of SSLPV's Eq. 7,
-// sslpv/lookup.glsl) + F_r(ω_o) · L_env(mirror direction): the
+// peers/sslpv/lookup.glsl) + F_r(ω_o) · L_env(mirror direction): the
 // specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
 // when there is none (render.specular off: no reflection). With uImageSpace, B comes from the
-// image-space method's accumulation at this pixel (image_space/result.glsl).
+// image-space method's accumulation at this pixel (peers/image_space/result.glsl).
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.glsl"
-#include "sss/algorithm1.glsl"
-#include "sss/gather.glsl"
-#include "sss/vpl_receiver.glsl"
-#include "image_space/result.glsl"
-#include "sslpv/lookup.glsl"
+#include "maps/algorithm1.glsl"
+#include "maps/gather.glsl"
+#include "maps/vpl_receiver.glsl"
+#include "peers/image_space/result.glsl"
+#include "peers/sslpv/lookup.glsl"
 
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -25,10 +25,10 @@ uniform vec3 uCameraForward;
 uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps (or, with uNoCache, the gather)
 uniform int uNoCache;      // 1: the gather per pixel against the light G-buffers, no maps
 uniform int uSlot;         // the translucent slot of this object (no-cache)
-uniform int uImageSpace;   // 1: B from the image-space method (image_space/result.glsl)
+uniform int uImageSpace;   // 1: B from the image-space method (peers/image_space/result.glsl)
 uniform int uSpecular;     // render.specular
 uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
-uniform sampler2D uEnvMap; // lat-long radiance (sss/environment_lights.h conventions)
+uniform sampler2D uEnvMap; // lat-long radiance (sss/maps/environment_lights.h conventions)
 uniform float uEnvRotation;  // radians about +y, counter-clockwise seen from above
 uniform float uEnvScale;
 uniform float uObjectEta;        // its relative index of refraction
@@ -39,7 +39,7 @@ layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, 
 const float PI = 3.14159265358979;
 
 // Radiance arriving from direction d (unit, from the scene outward). The inverse of
-// environmentDirection (sss/environment_lights.h): turn back by the rotation, then
+// environmentDirection (sss/maps/environment_lights.h): turn back by the rotation, then
 // θ = acos(d.y), φ = atan2(d.x, −d.z), u = φ/2π + 1/2, v = θ/π.
 vec3 environmentRadiance(vec3 d) {
   float c = cos(uEnvRotation), s = sin(uEnvRotation);

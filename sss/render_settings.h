@@ -1,8 +1,8 @@
 #pragma once
 // Every tunable of the renderer, one field each. The names, ranges, defaults and help live in one
-// place only, the parameter registry (app/params.cpp); this struct just holds the values.
+// place only, the parameter registry (app/config/params.cpp); this struct just holds the values.
 #include "gpu/tonemap.h"
-#include "sss/bssrdf.h"
+#include "sss/bssrdf/bssrdf.h"
 
 namespace tallow::sss {
 

@@ -13,14 +13,14 @@
 #include "gpu/shader_library.h"
 #include "sss/display_pass.h"
 #include "sss/field_objects.h"
-#include "sss/image_space.h"
-#include "sss/radiosity_maps.h"
+#include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
+#include "sss/peers/image_space.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
-#include "sss/virtual_point_lights.h"
 
 namespace tallow::sss {
 

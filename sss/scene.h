@@ -1,6 +1,6 @@
 #pragma once
 // What a frame renders: objects, lights and camera, in metres. Filled from presets/*.json by
-// app/preset.h; passes read it, never write it.
+// app/config/preset.h; passes read it, never write it.
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sss/material.h"
+#include "sss/bssrdf/material.h"
 
 namespace tallow::sss {
 
@@ -40,7 +40,7 @@ struct Transform {
 
 /// A second material inside a translucent object, in layers across `axis` that turbulence warps
 /// into veins (preset key "volume"; only SSLPV's heterogeneous medium reads it, the other methods
-/// shade the object with its own material: shaders/sslpv/volume.glsl, docs/sslpv.md).
+/// shade the object with its own material: shaders/peers/sslpv/volume.glsl, docs/sslpv.md).
 struct MaterialVolume {
   Material material;                 ///< the second material
   glm::vec3 axis{0.0f, 1.0f, 0.0f};  ///< unit normal of the layers in the object's frame
@@ -90,7 +90,7 @@ struct Camera {
 };
 
 /// An environment map lighting the scene as M directional lights (preset key "environment";
-/// sss/environment_lights.h has the mapping convention and the sampling).
+/// sss/maps/environment_lights.h has the mapping convention and the sampling).
 struct Environment {
   std::filesystem::path file;  ///< Radiance .hdr, lat-long; absolute once loaded
   int lights = 16;             ///< M, the number of directional lights it becomes

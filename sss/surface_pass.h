@@ -3,13 +3,13 @@
 // ambient sky, into a linear HDR target with depth.
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
-#include "sss/image_space.h"
-#include "sss/radiosity_maps.h"
+#include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
+#include "sss/peers/image_space.h"
+#include "sss/peers/sslpv.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
 #include "sss/shadow_pass.h"
-#include "sss/sslpv.h"
-#include "sss/virtual_point_lights.h"
 #include "sss/view_setup.h"
 
 namespace tallow::sss {

@@ -11,8 +11,8 @@
 
 #include "gpu/gl_context.h"
 #include "gpu/shader_library.h"
-#include "sss/bssrdf.h"
-#include "sss/bssrdf_gpu.h"
+#include "sss/bssrdf/bssrdf.h"
+#include "sss/bssrdf/bssrdf_gpu.h"
 
 namespace tallow::sss {
 namespace {

@@ -8,7 +8,7 @@
 // photon beam diffusion (10⁷ in all), each evaluated in float and in double: 2·10⁷ evaluations. PBD gets
 // fewer because one evaluation integrates along the beam (≈ 100–300 kernel evaluations, ~15 µs);
 // its adversarial share is the same.
-#include "sss/bssrdf.h"
+#include "sss/bssrdf/bssrdf.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // reflectance, the directional dipole's derivation (Eqs. 9, 18, 19, 20), symmetries and Eq. 23,
 // the reciprocal variant, and the photon-beam-diffusion quadrature against an independent
 // integration. Formulas: docs/bssrdf-models.md.
-#include "sss/bssrdf.h"
+#include "sss/bssrdf/bssrdf.h"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@ using namespace glm;
 using real = double;
 using real2 = glm::dvec2;
 using real3 = glm::dvec3;
-#include "sss/bssrdf_models.inc"
+#include "sss/bssrdf/bssrdf_models.inc"
 }  // namespace tallow::bssrdf_test_shared
 
 namespace tallow::sss {
@@ -43,7 +43,7 @@ std::string errorOf(const std::function<void()>& f) {
 }
 
 /// Adaptive Simpson quadrature with Richardson extrapolation: a different rule from the library's
-/// Gauss–Kronrod (sss/bssrdf.cpp), so that the two integrations check each other.
+/// Gauss–Kronrod (sss/bssrdf/bssrdf.cpp), so that the two integrations check each other.
 double simpsonStep(const std::function<double(double)>& f, double a, double b, double fa, double fm, double fb,
                    double whole, double tol, int depth) {
   const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sss/bssrdf.h"
-#include "sss/planar_mc.h"
+#include "sss/bssrdf/bssrdf.h"
+#include "sss/reference/planar_mc.h"
 
 namespace tallow::sss {
 namespace {

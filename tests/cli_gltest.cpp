@@ -10,7 +10,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "app/params.h"
+#include "app/config/params.h"
 #include "gpu/image_io.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"

@@ -1,6 +1,6 @@
 // The image-space method's sampler without GL (docs/image-space.md, "Tests"): the exact importance
-// sampling of the standard dipole's R_d (shaders/sss/dipole_sampling.glsl) and the combined pattern
-// and tangent-plane Jacobian (shaders/image_space/sampling.glsl), compiled here from the same files
+// sampling of the standard dipole's R_d (shaders/maps/dipole_sampling.glsl) and the combined pattern
+// and tangent-plane Jacobian (shaders/peers/image_space/sampling.glsl), compiled here from the same files
 // the GPU runs, in double and in float. Expected values come from this file: R_d and its CDF by
 // numerical integration of the test's own R_d (tests/support/dipole_totals.h), the term's CDF in
 // closed form in long double, the Jacobian by finite differences on a sphere.
@@ -24,10 +24,10 @@ using uint = std::uint32_t;
 using real = double;
 using real2 = glm::dvec2;
 using real3 = glm::dvec3;
-#include "sss/bssrdf_models.inc"
-#include "shaders/sss/estimator.glsl"
-#include "shaders/sss/dipole_sampling.glsl"
-#include "shaders/image_space/sampling.glsl"
+#include "sss/bssrdf/bssrdf_models.inc"
+#include "shaders/maps/estimator.glsl"
+#include "shaders/maps/dipole_sampling.glsl"
+#include "shaders/peers/image_space/sampling.glsl"
 }  // namespace tallow::dipole_sampling_f64
 
 namespace tallow::dipole_sampling_f32 {
@@ -36,10 +36,10 @@ using uint = std::uint32_t;
 using real = float;
 using real2 = glm::vec2;
 using real3 = glm::vec3;
-#include "sss/bssrdf_models.inc"
-#include "shaders/sss/estimator.glsl"
-#include "shaders/sss/dipole_sampling.glsl"
-#include "shaders/image_space/sampling.glsl"
+#include "sss/bssrdf/bssrdf_models.inc"
+#include "shaders/maps/estimator.glsl"
+#include "shaders/maps/dipole_sampling.glsl"
+#include "shaders/peers/image_space/sampling.glsl"
 }  // namespace tallow::dipole_sampling_f32
 
 namespace tallow {

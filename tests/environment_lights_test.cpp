@@ -1,6 +1,6 @@
 // An environment map as M directional lights (sss/environment_lights): median cut on constant and
 // one-pixel maps, the power centroid, the mapping convention and the shipped env.hdr.
-#include "sss/environment_lights.h"
+#include "sss/maps/environment_lights.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <numbers>
 
-#include "app/input_error.h"
-#include "app/preset.h"
+#include "app/config/input_error.h"
+#include "app/config/preset.h"
 #include "gpu/hdr_io.h"
 
 namespace tallow::sss {
@@ -169,7 +169,7 @@ TEST(EnvironmentLights, ShippedStudioMap) {
   EXPECT_NEAR(upward, 13.9, 13.9 * 0.15);
 }
 
-// The preset key "environment" (app/preset.cpp): values, defaults and file:line:col errors.
+// The preset key "environment" (app/config/preset.cpp): values, defaults and file:line:col errors.
 TEST(EnvironmentLights, PresetKey) {
   const std::filesystem::path data = TALLOW_TEST_DATA_DIR;
   const MaterialTable materials = MaterialTable::load(data / "materials.csv");

@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "app/input_error.h"
-#include "app/preset.h"
-#include "app/setup.h"
+#include "app/config/input_error.h"
+#include "app/config/preset.h"
+#include "app/config/setup.h"
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
-#include "sss/field_source.h"
 #include "gpu/gl_context.h"
+#include "sss/field_source.h"
 #include "sss/renderer.h"
 
 namespace tallow {

@@ -18,7 +18,7 @@
 #include "geometry/ply_writer.h"
 #include "geometry/primitives.h"
 #include "gpu/glsl_shared.h"
-#include "sss/image_space.h"
+#include "sss/peers/image_space.h"
 #include "support/dipole_totals.h"
 #include "support/render_support.h"
 #include "support/run_tallow.h"
@@ -31,10 +31,10 @@ using uint = std::uint32_t;
 using real = float;
 using real2 = glm::vec2;
 using real3 = glm::vec3;
-#include "sss/bssrdf_models.inc"
-#include "shaders/sss/estimator.glsl"
-#include "shaders/sss/dipole_sampling.glsl"
-#include "shaders/image_space/sampling.glsl"
+#include "sss/bssrdf/bssrdf_models.inc"
+#include "shaders/maps/estimator.glsl"
+#include "shaders/maps/dipole_sampling.glsl"
+#include "shaders/peers/image_space/sampling.glsl"
 }  // namespace tallow::image_space_gltest_f32
 
 namespace tallow {

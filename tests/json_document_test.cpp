@@ -1,5 +1,5 @@
 // JsonDocument: DOM equal to nlohmann's, 1-based line:col of every value and key, errors located.
-#include "app/json_document.h"
+#include "app/config/json_document.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "app/input_error.h"
+#include "app/config/input_error.h"
 
 namespace tallow::app {
 namespace {

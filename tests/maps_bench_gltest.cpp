@@ -1,5 +1,5 @@
 // `tallow probe maps` through the executable: the JSON contract at tiny sizes (K 1,2; N 1,2; 32²
-// maps), the maps' memory against the texture formats of sss/radiosity_maps.cpp, one-line errors
+// maps), the maps' memory against the texture formats of sss/maps/radiosity_maps.cpp, one-line errors
 // for bad input.
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/maps_bench_command.h"
+#include "app/commands/maps_bench_command.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
 
@@ -18,7 +18,7 @@ namespace {
 
 using test::runTallow;
 
-/// The maps of sss/radiosity_maps.cpp: K layers of RGBA32F (16 bytes) with the full mip chain
+/// The maps of sss/maps/radiosity_maps.cpp: K layers of RGBA32F (16 bytes) with the full mip chain
 /// (floor(log2 size) + 1 levels, each halving the edge), plus K layers of DEPTH_COMPONENT32F
 /// (4 bytes) without mipmaps.
 std::size_t expectedMapBytes(std::size_t k, std::size_t size) {

@@ -1,5 +1,5 @@
 // MaterialTable (materials.csv) and validateMaterial.
-#include "sss/material.h"
+#include "sss/bssrdf/material.h"
 
 #include <gtest/gtest.h>
 

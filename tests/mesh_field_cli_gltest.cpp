@@ -9,7 +9,7 @@
 #include <regex>
 #include <sstream>
 
-#include "app/setup.h"
+#include "app/config/setup.h"
 #include "geometry/ply_reader.h"
 #include "sss/field_source.h"
 #include "support/mesh_checks.h"

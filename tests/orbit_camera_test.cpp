@@ -1,5 +1,5 @@
-// The view window's mouse camera (app/orbit_camera.h) against closed-form positions.
-#include "app/orbit_camera.h"
+// The view window's mouse camera (app/playback/orbit_camera.h) against closed-form positions.
+#include "app/playback/orbit_camera.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // (sss/chandrasekhar_h): exact optics first, then the simulation against published and exact
 // numbers. Every statistical check allows kSigmas standard errors *reported by the simulation
 // itself* plus a stated bias term; the seeds are fixed, so each outcome is reproducible.
-#include "sss/planar_mc.h"
+#include "sss/reference/planar_mc.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "sss/chandrasekhar_h.h"
+#include "sss/reference/chandrasekhar_h.h"
 
 namespace tallow::sss {
 namespace {

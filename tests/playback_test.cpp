@@ -1,5 +1,5 @@
-// The animation clock of view and capture (app/playback.h).
-#include "app/playback.h"
+// The animation clock of view and capture (app/playback/playback.h).
+#include "app/playback/playback.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // The points CSV of `tallow field` (app/points_csv) and the tokeniser it shares with the BSSRDF
 // probe (app/csv_reader): accepted layouts, exact `file:line:col:` errors, limits, output format.
-#include "app/points_csv.h"
+#include "app/commands/points_csv.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <string>
 
-#include "app/csv_reader.h"
-#include "app/input_error.h"
+#include "app/commands/csv_reader.h"
+#include "app/config/input_error.h"
 #include "support/error_of.h"
 
 namespace tallow::app {

@@ -1,5 +1,5 @@
 // Presets: the shipped bunny, every field, and an exact file:line:col for each class of error.
-#include "app/preset.h"
+#include "app/config/preset.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "app/input_error.h"
-#include "app/params.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
 
 namespace tallow::app {
 namespace {

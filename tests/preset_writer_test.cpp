@@ -1,14 +1,14 @@
-// "Save as preset" (app/preset_writer.h): a preset written from a changed configuration reads back
-// (app/preset.h) to the same registry values; paths are made absolute; what cannot round-trip is
+// "Save as preset" (app/config/preset_writer.h): a preset written from a changed configuration reads back
+// (app/config/preset.h) to the same registry values; paths are made absolute; what cannot round-trip is
 // left out.
-#include "app/preset_writer.h"
+#include "app/config/preset_writer.h"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include "app/preset.h"
-#include "app/params.h"
+#include "app/config/params.h"
+#include "app/config/preset.h"
 
 namespace tallow::app {
 namespace {

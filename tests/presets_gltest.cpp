@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "app/setup.h"
+#include "app/config/setup.h"
 #include "gpu/image_io.h"
-#include "sss/bssrdf.h"
+#include "sss/bssrdf/bssrdf.h"
+#include "sss/maps/virtual_point_lights.h"
 #include "sss/scene_geometry.h"
-#include "sss/virtual_point_lights.h"
 #include "support/render_support.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"

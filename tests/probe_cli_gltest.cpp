@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/bssrdf_csv.h"
+#include "app/commands/bssrdf_csv.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
 

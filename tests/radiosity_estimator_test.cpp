@@ -1,9 +1,9 @@
-// The Monte Carlo estimator of scattered radiosity (sss/radiosity_estimator.h, shared with the GPU
-// through shaders/sss/estimator.glsl) against values derived independently here: the closed-form
+// The Monte Carlo estimator of scattered radiosity (sss/maps/radiosity_estimator.h, shared with the GPU
+// through shaders/maps/estimator.glsl) against values derived independently here: the closed-form
 // total diffuse reflectance of the standard dipole, a deterministic quadrature of the directional
 // dipole over the plane, hand-computed radical inverses, stereographic projections and PCG hashes,
 // and the chi-square distribution. Formulas: docs/radiosity-maps.md, "The estimator".
-#include "sss/radiosity_estimator.h"
+#include "sss/maps/radiosity_estimator.h"
 
 #include <gtest/gtest.h>
 
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "sss/bssrdf.h"
-#include "sss/material.h"
+#include "sss/bssrdf/bssrdf.h"
+#include "sss/bssrdf/material.h"
 
 namespace tallow::sss {
 namespace {

@@ -17,8 +17,8 @@
 #include "geometry/ply_writer.h"
 #include "geometry/primitives.h"
 #include "gpu/gl_objects.h"
-#include "sss/radiosity_estimator.h"
-#include "sss/radiosity_maps.h"
+#include "sss/maps/radiosity_estimator.h"
+#include "sss/maps/radiosity_maps.h"
 #include "support/dipole_totals.h"
 #include "support/error_of.h"
 #include "support/render_support.h"
@@ -131,7 +131,7 @@ TEST(RadiosityMaps, SlabLitObliquelyKeepsLambertsCosineOnce) {
 TEST(RadiosityMaps, GpuEstimatorEqualsTheCpuInstantiationAtChosenTexels) {
   // One frame of the slab. A map texel on the slab's top face (y = 0.05 m, n = +y) has x_o where
   // the texel centre's ray meets the plane; the CPU runs the float instantiation of the same
-  // estimator (sss/radiosity_estimator.h) with the same random streams (texel, map 0, frame 0)
+  // estimator (sss/maps/radiosity_estimator.h) with the same random streams (texel, map 0, frame 0)
   // and looks x_j up in the read-back light G-buffer the way the shader does (nearest texel).
   PresetSession s("slab", {"render.width=32", "render.height=32", "sss.maps=1", "sss.samples=16",
                            "sss.map_size=64", "sss.light_map_size=256", "sss.frames=64"});
@@ -199,7 +199,7 @@ TEST(RadiosityMaps, GpuEstimatorEqualsTheCpuInstantiationAtChosenTexels) {
 
 TEST(RadiosityMaps, FragmentAndComputeGathersGiveTheSameMaps) {
   // sss.gather=fragment is the paper's layered fragment pass; compute runs the same gather
-  // (shaders/sss/gather.glsl) over the maps' rasterised G-buffer. Same x_o, n_o and seeds: the
+  // (shaders/maps/gather.glsl) over the maps' rasterised G-buffer. Same x_o, n_o and seeds: the
   // same texels are shaded, with the same values up to the compilers' float rounding.
   const std::vector<std::string> common{"render.width=32", "render.height=32", "sss.maps=3", "sss.samples=4",
                                         "sss.map_size=64", "sss.light_map_size=128"};

@@ -1,4 +1,4 @@
-// The CPU reference integrator (sss/reference_integrator.h, `tallow reference`): the analytic slab
+// The CPU reference integrator (sss/reference/reference_integrator.h, `tallow reference`): the analytic slab
 // within its own error bound, an honest error estimate (two seeds differ by about √2 × the
 // estimated standard error), one-line refusals of bad options, and the emergent light onto the
 // receivers (--emergent) against a numerical integral, with visibility, and off by default. No GL.
@@ -11,13 +11,13 @@
 #include <map>
 #include <vector>
 
-#include "app/input_error.h"
-#include "app/reference_command.h"
-#include "app/setup.h"
+#include "app/commands/reference_command.h"
+#include "app/config/input_error.h"
+#include "app/config/setup.h"
 #include "gpu/hdr_io.h"
 #include "gpu/image_io.h"
-#include "sss/bssrdf.h"
-#include "sss/reference_integrator.h"
+#include "sss/bssrdf/bssrdf.h"
+#include "sss/reference/reference_integrator.h"
 #include "support/dipole_totals.h"
 #include "support/error_of.h"
 #include "support/run_tallow.h"

@@ -1,5 +1,5 @@
 // The parameter registry: declarations, defaults, type and range checks, --set parsing, snapshot.
-#include "app/registry.h"
+#include "app/config/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <set>
 #include <string>
 
-#include "app/input_error.h"
-#include "app/params.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
 
 namespace tallow::app {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "app/setup.h"
+#include "app/config/setup.h"
 #include "gpu/readback.h"
 #include "gpu/tonemap.h"
 #include "support/render_support.h"

@@ -1,14 +1,14 @@
 // The registry parameters the view panel added (material.*, light.type, camera.height) and how the
-// panel lays the registry out (app/view_param_widgets.h).
+// panel lays the registry out (app/view/view_param_widgets.h).
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
 #include "support/error_of.h"
 
-#include "app/input_error.h"
-#include "app/params.h"
-#include "app/view_param_widgets.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
+#include "app/view/view_param_widgets.h"
 
 namespace tallow::app {
 namespace {

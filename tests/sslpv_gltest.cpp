@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "gpu/gl_context.h"
+#include "sss/peers/sslpv.h"
+#include "sss/peers/sslpv_math.h"
 #include "sss/scene_geometry.h"
-#include "sss/sslpv.h"
-#include "sss/sslpv_math.h"
 #include "support/dipole_totals.h"
 #include "support/render_support.h"
 #include "support/run_tallow.h"

@@ -1,11 +1,11 @@
-// SSLPV's shared SH arithmetic (shaders/sslpv/sh.glsl, compiled as C++ by sss/sslpv_math.h: the
+// SSLPV's shared SH arithmetic (shaders/peers/sslpv/sh.glsl, compiled as C++ by sss/peers/sslpv_math.h: the
 // lines the GPU runs) and the propagation matrices, against numerical integration written here,
 // closed forms and the matrix the paper prints (Børlum et al. 2011, §4).
-#include "sss/sslpv_math.h"
+#include "sss/peers/sslpv_math.h"
 
 #include <gtest/gtest.h>
 
-#include "sss/material.h"
+#include "sss/bssrdf/material.h"
 
 #include <cmath>
 #include <functional>

@@ -1,13 +1,13 @@
-// Scripts of timed commands (app/view_script.h) and the debug-view names they use
+// Scripts of timed commands (app/playback/view_script.h) and the debug-view names they use
 // (sss/debug_view.h): what a valid file holds, and the exact FILE:LINE:COL line of each mistake.
-#include "app/view_script.h"
+#include "app/playback/view_script.h"
 
 #include <gtest/gtest.h>
 
 #include "support/error_of.h"
 
-#include "app/input_error.h"
-#include "app/params.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
 
 namespace tallow::app {
 namespace {

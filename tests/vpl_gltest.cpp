@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "gpu/image_error.h"
-#include "sss/bssrdf.h"
-#include "sss/reference_integrator.h"
-#include "sss/virtual_point_lights.h"
+#include "sss/bssrdf/bssrdf.h"
+#include "sss/maps/virtual_point_lights.h"
+#include "sss/reference/reference_integrator.h"
 #include "support/render_support.h"
 #include "support/temp_dir.h"
 

@@ -55,7 +55,7 @@ TALLOW_FN real3 refractedDirection(real3 wi, real3 ni, real eta) {
 //   C_φ(η) = ½ ∫₀¹ T(μ; 1/η) μ dμ,   C_E(η) = (3/2) ∫₀¹ T(μ; 1/η) μ² dμ   (Eqs. 28–29),
 // where μ is the cosine of the direction inside the medium and T(μ; 1/η) the transmittance of
 // light inside the medium reaching the boundary (so with total internal reflection for η > 1):
-// that is the reading of Eqs. 28–29 that the fits reproduce (sss/bssrdf.cpp integrates it; the
+// that is the reading of Eqs. 28–29 that the fits reproduce (sss/bssrdf/bssrdf.cpp integrates it; the
 // tests compare). C_φ(1/η) is then the same integral seen from outside.
 //
 // The fits are usable on [0.4, 2.5] (beyond 2.5 the η ≥ 1 fit of 3C_2 runs away and C_φ turns

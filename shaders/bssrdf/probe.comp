@@ -1,6 +1,6 @@
 #version 450 core
 // Evaluates one BSSRDF configuration per invocation with the shared model files, for
-// `tallow probe bssrdf --gpu` and the GLSL-vs-C++ tests (sss/bssrdf_gpu.cpp).
+// `tallow probe bssrdf --gpu` and the GLSL-vs-C++ tests (sss/bssrdf/bssrdf_gpu.cpp).
 #include "bssrdf/bssrdf.glsl"
 
 layout(local_size_x = 64) in;

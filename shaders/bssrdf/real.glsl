@@ -1,6 +1,6 @@
 // Conventions of the BSSRDF model files (shaders/bssrdf/*.glsl), which are written once and
 // compiled both as GLSL 4.50 (every GPU pass, shaders/bssrdf/probe.comp) and as C++ through GLM,
-// in float and in double precision (sss/bssrdf.cpp, the tests). See docs/bssrdf-models.md.
+// in float and in double precision (sss/bssrdf/bssrdf.cpp, the tests). See docs/bssrdf-models.md.
 //
 // Types. `real`, `real2`, `real3` are the scalar and vector types. GLSL: the macros below (float,
 // vec2, vec3). C++: type aliases declared in the namespace that includes the files

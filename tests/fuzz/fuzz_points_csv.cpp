@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "app/input_error.h"
-#include "app/points_csv.h"
+#include "app/commands/points_csv.h"
+#include "app/config/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

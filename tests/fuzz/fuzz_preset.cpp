@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "app/input_error.h"
-#include "app/preset.h"
-#include "sss/material.h"
+#include "app/config/input_error.h"
+#include "app/config/preset.h"
+#include "sss/bssrdf/material.h"
 
 namespace {
 

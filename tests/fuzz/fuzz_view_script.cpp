@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string_view>
 
-#include "app/input_error.h"
-#include "app/params.h"
-#include "app/view_script.h"
-#include "sss/material.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
+#include "app/playback/view_script.h"
+#include "sss/bssrdf/material.h"
 
 namespace {
 

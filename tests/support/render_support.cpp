@@ -1,6 +1,6 @@
 #include "support/render_support.h"
 
-#include "app/setup.h"
+#include "app/config/setup.h"
 
 namespace tallow::test {
 

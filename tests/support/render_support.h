@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "app/setup.h"
+#include "app/config/setup.h"
 #include "gpu/gl_context.h"
 #include "gpu/image.h"
 #include "sss/renderer.h"

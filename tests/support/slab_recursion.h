@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-#include "sss/sslpv_math.h"
+#include "sss/peers/sslpv_math.h"
 
 namespace tallow::test {
 

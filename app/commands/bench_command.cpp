@@ -1,0 +1,614 @@
+#include "app/commands/bench_command.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "app/commands/capture_command.h"
+#include "app/commands/frame_stats.h"
+#include "app/commands/gnuplot.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
+#include "gpu/atomic_file.h"
+#include "gpu/gl_context.h"
+#include "gpu/image_error.h"
+#include "gpu/image_io.h"
+#include "sss/reference/reference_integrator.h"
+#include "sss/renderer.h"
+
+namespace tallow::app {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+/// The reference integrates subsurface transport for every method but albedo; the bench's ground
+/// truth is that, whatever method the rows use.
+constexpr const char* kReferenceMethod = "radiosity-maps";
+/// The equal-time reference draws a stream independent of the converged one it is compared with.
+constexpr std::uint64_t kReferenceSeed = 1;
+constexpr std::uint64_t kEqualTimeSeedOffset = 1000;
+/// A cap on the equal-time reference's passes, which its time budget stops long before.
+constexpr int kEqualTimeMaxPasses = 1 << 16;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// One method × setting.
+struct Case {
+  std::string method;
+  std::vector<std::string> values;  ///< one per sweep
+  int group = 0;                    ///< index of its reference
+  std::string name;                 ///< file-name stem
+  SceneOptions scene;
+  LoadedScene loaded;
+};
+
+/// The settings a reference depends on (the non-knob swept values) and its result.
+struct ReferenceGroup {
+  std::vector<std::pair<std::string, std::string>> settings;
+  SceneOptions scene;
+  gpu::Image radiance, standardError;
+  gpu::Image emergent;  ///< --receivers: the emergent term alone, alpha 1 on receiver pixels
+  std::size_t objectPixels = 0;
+  json info;  ///< passes, relative error, seconds, file
+  std::string file;  ///< name in DIR, when computed here
+};
+
+struct FramePoint {
+  int index = 0;
+  double cumulativeMs = 0.0;
+  gpu::ImageError error;
+};
+
+struct RowResult {
+  int frames = 0, convergedFrames = 0;
+  double firstWallMs = 0.0;
+  gpu::ImageError firstError, lastError;
+  std::vector<double> wallMs, accumulatingMs, convergedMs;
+  std::map<std::string, std::vector<double>> passMs;
+  std::vector<FramePoint> convergence;
+  std::size_t gpuBytes = 0, triangles = 0;
+  std::optional<std::size_t> mapsBytes;
+  gpu::Image first, last;
+  // --equal-time
+  std::optional<gpu::ImageError> equalTimeError;
+  int equalTimePasses = 0;
+  double equalTimeMs = 0.0;
+  gpu::Image equalTimeImage;
+  // --receivers
+  std::optional<gpu::ImageError> receiverError;
+};
+
+std::string fileStem(const std::string& text) {
+  std::string s;
+  for (const char c : text) s += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+  return s;
+}
+
+std::vector<std::vector<std::string>> cartesian(const std::vector<Sweep>& sweeps) {
+  std::vector<std::vector<std::string>> combos{{}};
+  for (const Sweep& s : sweeps) {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& c : combos)
+      for (const std::string& v : s.values) {
+        next.push_back(c);
+        next.back().push_back(v);
+      }
+    combos = std::move(next);
+  }
+  return combos;
+}
+
+void checkOptions(const BenchOptions& o) {
+  if (o.outDir.empty()) throw InputError("bench: --out DIR is required");
+  if (o.frames < kMinBenchFrames)
+    throw InputError("--frames: must be at least " + std::to_string(kMinBenchFrames));
+  const int given = (o.reference.empty() ? 0 : 1) + (std::isnan(o.refRelError) ? 0 : 1) + (o.refSpp == kNotGiven ? 0 : 1);
+  if (given != 1)
+    throw InputError("bench: give exactly one of --reference REF.exr, --ref-rel-error E or --ref-spp S");
+  if (!std::isnan(o.refRelError) && !(std::isfinite(o.refRelError) && o.refRelError > 0.0))
+    throw InputError("--ref-rel-error: must be a positive number");
+  if (o.refSpp != kNotGiven && o.refSpp < 1) throw InputError("--ref-spp: must be at least 1");
+  if (o.refPoints < 0) throw InputError("--ref-points: must be 0 (automatic) or more");
+  if (!std::isfinite(o.timeS)) throw InputError("--time: must be a finite number of seconds");
+}
+
+gpu::Image readReferenceImage(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw InputError("--reference: " + file.string() + " does not exist");
+  try {
+    return gpu::readExr(file);
+  } catch (const std::exception& e) {
+    std::string line = "--reference: ";
+    line += e.what();
+    throw InputError(line);
+  }
+}
+
+/// --reference REF.exr and REF_stderr.exr (with --receivers also REF_emergent.exr), checked against
+/// the render size.
+void loadGivenReference(const BenchOptions& o, int width, int height, ReferenceGroup& g) {
+  const std::filesystem::path files[3] = {o.reference, standardErrorPath(o.reference), emergentPath(o.reference)};
+  g.radiance = readReferenceImage(files[0]);
+  g.standardError = readReferenceImage(files[1]);
+  if (o.receivers) g.emergent = readReferenceImage(files[2]);
+  for (int k = 0; k < (o.receivers ? 3 : 2); ++k) {
+    const gpu::Image& i = k == 0 ? g.radiance : k == 1 ? g.standardError : g.emergent;
+    if (i.width != width || i.height != height)
+      throw InputError("--reference: " + files[k].string() + " is " + std::to_string(i.width) + "x" +
+                       std::to_string(i.height) + " but the bench renders " + std::to_string(width) + "x" +
+                       std::to_string(height));
+  }
+  g.info = {{"file", std::filesystem::absolute(o.reference).string()}};
+  try {
+    for (const auto& [k, v] : gpu::readExrStringAttributes(o.reference)) g.info["attributes"][k] = v;
+  } catch (const std::exception&) {
+    // Attributes are informative only; the pixels were read above.
+  }
+}
+
+void computeGroupReference(const BenchOptions& o, ReferenceGroup& g) {
+  ReferenceOptions r;
+  r.scene = g.scene;
+  r.timeS = o.timeS;
+  r.spp = o.refSpp;
+  r.relError = o.refRelError;
+  r.points = o.refPoints;
+  r.seed = kReferenceSeed;
+  r.out = g.file;  // validateReferenceOptions wants a name; nothing is written by computeReference
+  if (o.receivers) r.emergent = sss::kDefaultEmitterPoints;
+  const sss::ReferenceResult result = computeReference(r);
+  g.radiance = result.radiance;
+  g.standardError = result.standardError;
+  g.emergent = result.emergent;
+  g.info = {{"file", g.file},
+            {"passes", result.passes},
+            {"points_per_pass", result.pointsPerPass},
+            {"rel_error", result.relError},
+            {"rel_error_statistic", sss::kReferenceErrorStatistic},
+            {"seconds", result.seconds},
+            {"seed", kReferenceSeed},
+            {"threads", std::thread::hardware_concurrency()}};
+  if (o.receivers)
+    g.info["emergent"] = {{"emitter_points", result.emitterPoints},
+                          {"receiver_pixels", result.emergentPixels},
+                          {"rel_error", result.emergentRelError},
+                          {"rel_error_statistic", sss::kEmergentErrorStatistic}};
+}
+
+/// Our method's frames after a warm-up frame and a restart (see docs/commands.md).
+RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibrary& shaders, int minFrames,
+                 double timeS, bool receivers) {
+  const sss::Scene& scene = c.loaded.config.scene;
+  const sss::RenderSettings& settings = c.loaded.config.render;
+  sss::Renderer renderer(shaders, scene, settings);
+  renderer.render(scene, settings, timeS);  // warm-up: shader compiles, allocations, the field's extraction
+  glFinish();
+  renderer.restartAccumulation();
+
+  RowResult row;
+  // Progressive methods accumulate for their frame count; two converged frames follow.
+  const int accumulated =
+      settings.sss.method == sss::SssMethod::ImageSpace ? settings.imageSpace.frames : settings.sss.frames;
+  row.frames = std::max(minFrames, accumulated + 2);
+  double cumulative = 0.0;
+  for (int i = 0; i < row.frames; ++i) {
+    const auto plan = renderer.planFrame(scene, settings, timeS);
+    const bool accumulating = std::any_of(plan.begin(), plan.end(), [](const sss::PlannedPass& p) {
+      return p.name == "sss.maps" || p.name == "image_space.scatter";
+    });
+    const auto start = Clock::now();
+    const sss::FrameTimings timings = renderer.render(scene, settings, timeS);
+    glFinish();
+    const double ms = msSince(start);
+    cumulative += ms;
+    row.wallMs.push_back(ms);
+    (accumulating ? row.accumulatingMs : row.convergedMs).push_back(ms);
+    for (const auto& p : timings.passes) row.passMs[p.name].push_back(p.gpuMs);
+    gpu::Image image = renderer.readRadiance();
+    const gpu::ImageError e = gpu::imageError(image, ref.radiance, ref.standardError);
+    row.convergence.push_back({i, cumulative, e});
+    if (i == 0) {
+      row.firstWallMs = ms;
+      row.firstError = e;
+      row.first = std::move(image);
+    } else if (i + 1 == row.frames) {
+      row.lastError = e;
+      row.last = std::move(image);
+    }
+  }
+  if (receivers) {
+    // The VPL term alone: the same frame without VPLs (the maps stay as they are: vpl.count is not
+    // part of their state), subtracted.
+    sss::RenderSettings without = settings;
+    without.vpl.count = 0;
+    renderer.render(scene, without, timeS);
+    const gpu::Image dark = renderer.readRadiance();
+    gpu::Image term = row.last;
+    for (std::size_t i = 0; i < term.pixels.size(); ++i)
+      term.pixels[i] = glm::vec4(glm::vec3(term.pixels[i] - dark.pixels[i]), 1.0f);
+    row.receiverError = gpu::imageError(term, ref.emergent, ref.emergent);
+  }
+  row.convergedFrames = static_cast<int>(row.convergedMs.size());
+  row.gpuBytes = renderer.gpuBytes();
+  row.triangles = renderer.triangleCount();
+  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) row.mapsBytes = maps->bytes();
+  return row;
+}
+
+/// The reference integrator with a fresh seed, stopped once it has run as long as our first frame.
+void runEqualTime(const LoadedScene& truth, const ReferenceGroup& ref, const BenchOptions& o, RowResult& row) {
+  sss::ReferenceSettings s;
+  s.timeS = o.timeS;
+  s.maxPasses = kEqualTimeMaxPasses;
+  s.pointsPerPass = o.refPoints;
+  s.seed = kReferenceSeed + kEqualTimeSeedOffset;
+  const double budgetMs = row.firstWallMs;
+  const auto start = Clock::now();
+  const sss::ReferenceResult r = sss::renderReference(truth.config.scene, truth.config.render, s,
+                                                      [&](int, double) { return msSince(start) < budgetMs; });
+  row.equalTimeMs = msSince(start);
+  row.equalTimePasses = r.passes;
+  row.equalTimeError = gpu::imageError(r.radiance, ref.radiance, ref.standardError);
+  row.equalTimeImage = r.radiance;
+}
+
+/// Panels side by side, left to right (all the same size).
+gpu::Image strip(const std::vector<const gpu::Image*>& panels) {
+  const int w = panels.front()->width, h = panels.front()->height;
+  gpu::Image out(w * static_cast<int>(panels.size()), h);
+  for (std::size_t k = 0; k < panels.size(); ++k)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) out.at(static_cast<int>(k) * w + x, y) = panels[k]->at(x, y);
+  return out;
+}
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  return "unknown";
+}
+
+json optionalNumber(const std::vector<double>& values) { return values.empty() ? json(nullptr) : json(median(values)); }
+
+std::string cell(const json& v) {
+  if (v.is_null()) return "";
+  if (v.is_number()) return formatNumber(v.get<double>());
+  return v.is_string() ? v.get<std::string>() : v.dump();
+}
+
+json errorJson(const gpu::ImageError& e) {
+  return {{"rmse", e.rmse}, {"rel_rmse", e.relRmse}, {"max", e.maxError}, {"mean_ratio", e.meanRatio}};
+}
+
+void writePlots(const std::filesystem::path& outDir, const std::string& title, bool hasRows) {
+  const std::filesystem::path out = std::filesystem::absolute(outDir);  // the kept script runs from anywhere
+  if (!hasRows) return;
+  runGnuplot(
+      out / "bench.gp",
+      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
+        // bench.csv: column 1 the row's name; the others are looked up by header name. The bench
+        // draws into temporary files; the script is kept, to redraw by hand (its "# redraw" line).
+        std::fprintf(f,
+                     "# redraw: gnuplot -e \"speed_png='speed_error.png'; convergence_png='convergence.png'\" "
+                     "bench.gp\n"
+                     "if (!exists(\"speed_png\")) speed_png = '%s'\n"
+                     "if (!exists(\"convergence_png\")) convergence_png = '%s'\n"
+                     "set key autotitle columnhead\n"
+                     "set output speed_png\n"
+                     "set title \"%s: speed against error\" noenhanced\n"
+                     "set logscale x\nset xlabel 'median wall time per frame [ms]'\n"
+                     "set ylabel 'relative RMSE of the last frame'\nset grid\nunset key\n"
+                     "plot '%s' using 'median_wall_ms':'last_rel_rmse' with points pt 7 ps 1.2, \\\n"
+                     "     '' using 'median_wall_ms':'last_rel_rmse':1 with labels offset 0,1 font ',8' noenhanced\n"
+                     "set output convergence_png\n"
+                     "set title \"%s: convergence after a restart\" noenhanced\n"
+                     "unset logscale x\nset xlabel 'frames since the restart'\nset ylabel 'relative RMSE'\n"
+                     "set key outside right noenhanced\n"
+                     "rows = system(\"tail -n +2 '%s' | cut -d, -f1 | uniq\")\n"
+                     "plot for [r in rows] '%s' using ((strcol(1) eq r) ? column('frame') + 1 : 1/0):'rel_rmse' "
+                     "with linespoints title r\n",
+                     tmp[0].c_str(), tmp[1].c_str(), title.c_str(), (out / "bench.csv").c_str(), title.c_str(),
+                     (out / "convergence.csv").c_str(), (out / "convergence.csv").c_str());
+      },
+      {out / "speed_error.png", out / "convergence.png"}, "the bench plots",
+      /*keepScript=*/true);
+}
+
+}  // namespace
+
+Sweep parseSweep(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) throw InputError("--sweep: expected key=v1,v2,... but got " + quote(text));
+  Sweep s;
+  s.key = text.substr(0, eq);
+  if (s.key.empty()) throw InputError("--sweep: no key before '=' in " + quote(text));
+  std::stringstream values(text.substr(eq + 1));
+  std::string v;
+  while (std::getline(values, v, ',')) s.values.push_back(v);
+  if (!text.empty() && text.back() == ',') s.values.push_back("");
+  if (s.values.empty() || std::any_of(s.values.begin(), s.values.end(), [](const std::string& x) { return x.empty(); }))
+    throw InputError("--sweep: " + s.key + ": give one or more values, separated by commas");
+  if (s.key == "method") throw InputError("--sweep: method: list the methods with --methods");
+  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0 ||
+           s.key.rfind("image_space.", 0) == 0 || s.key.rfind("sslpv.", 0) == 0;
+  return s;
+}
+
+int runBench(const BenchOptions& o) {
+  checkOptions(o);
+  std::vector<Sweep> sweeps;
+  for (const std::string& text : o.sweeps) {
+    sweeps.push_back(parseSweep(text));
+    for (std::size_t i = 0; i + 1 < sweeps.size(); ++i)
+      if (sweeps[i].key == sweeps.back().key) throw InputError("--sweep: " + sweeps.back().key + " is swept twice");
+  }
+  const bool givenReference = !o.reference.empty();
+  for (const Sweep& s : sweeps)
+    if (givenReference && !s.knob)
+      throw InputError("--sweep: " + s.key + " changes the ground truth, so it needs one reference per value: use "
+                       "--ref-rel-error or --ref-spp instead of --reference");
+
+  // Every case through the registry before any file or GL work: unknown keys, values out of range
+  // and unknown methods give the registry's one line.
+  const LoadedScene base = loadScene(o.scene);
+  std::vector<std::string> methods = o.methods;
+  if (methods.empty()) methods = parameterRegistry(base.materials).find("method")->choices;
+  std::vector<Case> cases;
+  std::vector<ReferenceGroup> groups;
+  std::map<std::vector<std::string>, int> groupOf;
+  for (const std::string& method : methods)
+    for (const auto& values : cartesian(sweeps)) {
+      Case c;
+      c.method = method;
+      c.values = values;
+      c.scene = o.scene;
+      c.scene.sets.push_back("method=" + method);
+      c.name = fileStem(method);
+      std::vector<std::string> truthKey;
+      std::vector<std::pair<std::string, std::string>> truthSettings;
+      for (std::size_t i = 0; i < sweeps.size(); ++i) {
+        c.scene.sets.push_back(sweeps[i].key + "=" + values[i]);
+        c.name += '_';
+        c.name += fileStem(sweeps[i].key);
+        c.name += '-';
+        c.name += fileStem(values[i]);
+        if (!sweeps[i].knob) {
+          truthKey.push_back(values[i]);
+          truthSettings.emplace_back(sweeps[i].key, values[i]);
+        }
+      }
+      c.loaded = loadScene(c.scene);
+      const auto [it, added] = groupOf.emplace(truthKey, static_cast<int>(groups.size()));
+      if (added) {
+        ReferenceGroup g;
+        g.settings = truthSettings;
+        g.scene = o.scene;
+        for (const auto& [k, v] : truthSettings) g.scene.sets.push_back(k + "=" + v);
+        g.scene.sets.push_back(std::string("method=") + kReferenceMethod);
+        groups.push_back(std::move(g));
+      }
+      c.group = it->second;
+      cases.push_back(std::move(c));
+    }
+  const int width = base.config.render.width, height = base.config.render.height;
+  for (const Case& c : cases)
+    if (c.loaded.config.render.width != width || c.loaded.config.render.height != height)
+      throw InputError("--sweep: every row must render at one size; sweep --size-independent keys only");
+
+  const std::filesystem::path out(o.outDir);
+  checkWritableFolder(out);
+
+  // The references: read, or integrated on the CPU (nothing written yet).
+  for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+    ReferenceGroup& g = groups[gi];
+    if (givenReference) {
+      loadGivenReference(o, width, height, g);
+    } else {
+      g.file = "reference";
+      if (groups.size() > 1) g.file += "_" + std::to_string(gi);
+      g.file += ".exr";
+      std::fprintf(stderr, "tallow: bench: computing %s on the CPU\n", g.file.c_str());
+      computeGroupReference(o, g);
+    }
+    g.objectPixels = gpu::objectPixels(g.standardError);
+    if (o.receivers && (g.emergent.pixels.empty() || gpu::objectPixels(g.emergent) == 0))
+      throw InputError("bench: --receivers: the reference has no receiver pixel (no opaque surface in view)");
+    if (g.objectPixels == 0)
+      throw InputError("bench: the reference has no object pixel (no translucent object in view), so there is "
+                       "nothing to compare");
+  }
+
+  gpu::ContextOptions contextOptions;
+  contextOptions.backend = gpu::parseGlBackend(o.gl);
+  contextOptions.visible = false;
+  const auto context = gpu::GlContext::create(contextOptions);
+  const gpu::ShaderLibrary shaders = makeShaderLibrary(o.scene.shaderDir);
+
+  std::vector<RowResult> rows;
+  std::vector<std::string> passNames;  // in the order first seen
+  for (const Case& c : cases) {
+    const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
+    if (o.scene.explain)
+      for (const auto& p : sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render))
+        std::printf("%s: pass %-20s %s\n", c.name.c_str(), p.name.c_str(), p.reason.c_str());
+    RowResult row = runRow(c, ref, shaders, o.frames, o.timeS, o.receivers);
+    if (o.equalTime) {
+      LoadedScene truth = loadScene(ref.scene);
+      runEqualTime(truth, ref, o, row);
+    }
+    for (const auto& [name, ms] : row.passMs)
+      if (std::find(passNames.begin(), passNames.end(), name) == passNames.end()) passNames.push_back(name);
+    std::printf("%-40s first %9.3f ms rel %.4g  median %9.3f ms  last rel %.4g\n", c.name.c_str(), row.firstWallMs,
+                row.firstError.relRmse, median(row.wallMs), row.lastError.relRmse);
+    rows.push_back(std::move(row));
+  }
+
+  // The table: one row per method × setting.
+  std::vector<std::string> header = {"row", "method"};
+  for (const Sweep& s : sweeps) header.push_back(s.key);
+  for (const char* h : {"reference", "frames", "converged_frames", "first_wall_ms", "first_rmse", "first_rel_rmse",
+                        "median_wall_ms", "median_accumulating_wall_ms", "median_converged_wall_ms"})
+    header.push_back(h);
+  for (const std::string& p : passNames) header.push_back("gpu_ms_" + p);
+  for (const char* h : {"last_rmse", "last_rel_rmse", "last_max_error"}) header.push_back(h);
+  if (o.equalTime)
+    for (const char* h : {"equal_time_ms", "equal_time_passes", "equal_time_rel_rmse"}) header.push_back(h);
+  for (const char* h : {"object_pixels", "gpu_bytes", "maps_bytes", "triangles"}) header.push_back(h);
+
+  json jsonRows = json::array(), jsonConvergence = json::array();
+  std::string csv, convergenceCsv = "row,method";
+  for (const Sweep& s : sweeps) convergenceCsv += "," + s.key;
+  convergenceCsv += ",frame,cumulative_wall_ms,rmse,rel_rmse\n";
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) csv += ',';
+    csv += header[i];
+  }
+  csv += "\n";
+  const Registry registry = parameterRegistry(base.materials);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const Case& c = cases[r];
+    const RowResult& row = rows[r];
+    const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
+    json settings = json::object();
+    for (std::size_t i = 0; i < sweeps.size(); ++i) settings[sweeps[i].key] = c.values[i];
+    json passMedians = json::object();
+    for (const std::string& p : passNames) {
+      const auto it = row.passMs.find(p);
+      passMedians[p] = it == row.passMs.end() ? json(nullptr) : json(median(it->second));
+    }
+    json values = {{"row", c.name},
+                   {"method", c.method},
+                   {"reference", givenReference ? std::filesystem::path(o.reference).filename().string() : ref.file},
+                   {"frames", row.frames},
+                   {"converged_frames", row.convergedFrames},
+                   {"first_wall_ms", row.firstWallMs},
+                   {"first_rmse", row.firstError.rmse},
+                   {"first_rel_rmse", row.firstError.relRmse},
+                   {"median_wall_ms", median(row.wallMs)},
+                   {"median_accumulating_wall_ms", optionalNumber(row.accumulatingMs)},
+                   {"median_converged_wall_ms", optionalNumber(row.convergedMs)},
+                   {"last_rmse", row.lastError.rmse},
+                   {"last_rel_rmse", row.lastError.relRmse},
+                   {"last_max_error", row.lastError.maxError},
+                   {"object_pixels", row.lastError.pixels},
+                   {"gpu_bytes", row.gpuBytes},
+                   {"maps_bytes", row.mapsBytes ? json(*row.mapsBytes) : json(nullptr)},
+                   {"triangles", row.triangles}};
+    if (row.equalTimeError) {
+      values["equal_time_ms"] = row.equalTimeMs;
+      values["equal_time_passes"] = row.equalTimePasses;
+      values["equal_time_rel_rmse"] = row.equalTimeError->relRmse;
+    }
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      const std::string& h = header[i];
+      json v = values.contains(h) ? values[h] : settings.contains(h) ? settings[h] : json(nullptr);
+      if (h.rfind("gpu_ms_", 0) == 0) v = passMedians[h.substr(7)];
+      if (i) csv += ',';
+      csv += cell(v);
+    }
+    csv += "\n";
+    json convergence = json::array();
+    for (const FramePoint& p : row.convergence) {
+      convergenceCsv += c.name + "," + c.method;
+      for (const std::string& v : c.values) convergenceCsv += "," + v;
+      convergenceCsv += "," + std::to_string(p.index) + "," + formatNumber(p.cumulativeMs) + "," +
+                        formatNumber(p.error.rmse) + "," + formatNumber(p.error.relRmse) + "\n";
+      convergence.push_back({{"frame", p.index}, {"cumulative_wall_ms", p.cumulativeMs}, {"rmse", p.error.rmse},
+                             {"rel_rmse", p.error.relRmse}});
+    }
+    values["settings"] = settings;
+    values["gpu_ms_median"] = passMedians;
+    values["wall_ms"] = row.wallMs;
+    values["first_error"] = errorJson(row.firstError);
+    values["last_error"] = errorJson(row.lastError);
+    if (row.equalTimeError) values["equal_time_error"] = errorJson(*row.equalTimeError);
+    if (row.receiverError) values["receiver_error"] = errorJson(*row.receiverError);
+    values["parameters"] = registry.snapshot(c.loaded.config);
+    jsonRows.push_back(values);
+    jsonConvergence.push_back({{"row", c.name}, {"frames", convergence}});
+  }
+
+  json references = json::array();
+  for (const ReferenceGroup& g : groups) {
+    json s = json::object();
+    for (const auto& [k, v] : g.settings) s[k] = v;
+    json entry = g.info;
+    entry["settings"] = s;
+    entry["object_pixels"] = g.objectPixels;
+    references.push_back(entry);
+  }
+  const json result = {
+      {"command", "bench"},
+      {"preset", base.presetName},
+      {"width", width},
+      {"height", height},
+      {"time_s", o.timeS},
+      {"sets", o.scene.sets},
+      {"sweeps", o.sweeps},
+      {"methods", methods},
+      {"min_frames", o.frames},
+      {"equal_time", o.equalTime},
+      {"receivers", o.receivers},
+      {"gpu",
+       {{"backend", std::string(gpu::glBackendName(context->backend()))},
+        {"GL_RENDERER", context->info().renderer},
+        {"GL_VERSION", context->info().version}}},
+      {"cpu", {{"model", cpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}}},
+      {"reference_method", kReferenceMethod},
+      {"references", references},
+      {"error_metric",
+       "over object pixels (reference standard-error alpha >= 0.5): e_p = sqrt(dr^2+dg^2+db^2); rmse = "
+       "sqrt(mean e_p^2); rel_rmse = rmse / sqrt(mean (r^2+g^2+b^2) of the reference); max = max e_p"},
+      {"rows", jsonRows},
+      {"convergence", jsonConvergence}};
+
+  // Everything ran: write.
+  std::filesystem::create_directories(out);
+  if (!givenReference)
+    for (const ReferenceGroup& g : groups) {
+      gpu::writeExr(out / g.file, g.radiance, gpu::ExrPixelType::Float, {{"tallow.preset", base.presetName}});
+      gpu::writeExr(standardErrorPath(out / g.file), g.standardError, gpu::ExrPixelType::Float,
+                    {{"tallow.preset", base.presetName}});
+    }
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const Case& c = cases[r];
+    const RowResult& row = rows[r];
+    const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
+    const gpu::ToneMapSettings& toneMap = c.loaded.config.render.toneMap;
+    gpu::writePng(out / (c.name + "_first.png"), row.first, toneMap);
+    gpu::writePng(out / (c.name + "_last.png"), row.last, toneMap);
+    gpu::writeExr(out / (c.name + "_last.exr"), row.last, gpu::ExrPixelType::Float);
+    // |Δ| on the images' own scale, so that the rows' pictures compare with each other.
+    gpu::writePng(out / (c.name + "_diff.png"), gpu::differenceImage(row.last, ref.radiance, ref.standardError), toneMap);
+    const gpu::Image firstDiff = gpu::differenceImage(row.first, ref.radiance, ref.standardError);
+    std::vector<const gpu::Image*> panels = {&ref.radiance, &row.first, &firstDiff};
+    if (row.equalTimeError) panels.push_back(&row.equalTimeImage);
+    gpu::writePng(out / (c.name + "_equal_time.png"), strip(panels), toneMap);
+  }
+  gpu::writeTextFileAtomically(out / "bench.csv", csv);
+  gpu::writeTextFileAtomically(out / "convergence.csv", convergenceCsv);
+  gpu::writeTextFileAtomically(out / "bench.json", result.dump(2) + "\n");
+  writePlots(out, base.presetName, !rows.empty());
+  std::printf("tallow: bench of %s (%dx%d, %zu row(s), %s) -> %s\n", base.presetName.c_str(), width, height,
+              rows.size(), context->info().renderer.c_str(), out.string().c_str());
+  return 0;
+}
+
+}  // namespace tallow::app

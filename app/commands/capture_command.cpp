@@ -1,0 +1,223 @@
+#include "app/commands/capture_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+#include "app/commands/frame_stats.h"
+#include "app/commands/video_encoder.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
+#include "app/playback/playback.h"
+#include "app/playback/scene_controls.h"
+#include "app/playback/view_script.h"
+#include "gpu/atomic_file.h"
+#include "gpu/image_error.h"
+#include "gpu/image_io.h"
+#include "sss/field_source.h"
+#include "sss/renderer.h"
+
+namespace tallow::app {
+
+void checkWritableFolder(const std::filesystem::path& dir) {
+  // The nearest folder that exists must be writable (so the rest can be created).
+  std::filesystem::path probe = std::filesystem::absolute(dir);
+  std::error_code ec;
+  while (!std::filesystem::exists(probe, ec)) {
+    if (!probe.has_parent_path() || probe.parent_path() == probe) break;
+    probe = probe.parent_path();
+  }
+  if (std::filesystem::exists(probe, ec) && !std::filesystem::is_directory(probe, ec))
+    throw InputError("--out: " + probe.string() + " is not a folder");
+  if (::access(probe.c_str(), W_OK | X_OK) != 0)
+    throw InputError("--out: cannot write to " + dir.string() + ": " + std::strerror(errno));
+}
+
+namespace {
+/// Sums `more` into `total` pass by pass (passes absent from `total` are appended).
+void addTimings(sss::FrameTimings& total, const sss::FrameTimings& more) {
+  for (const gpu::PassTiming& p : more.passes) {
+    auto it = std::find_if(total.passes.begin(), total.passes.end(),
+                           [&](const gpu::PassTiming& q) { return q.name == p.name; });
+    if (it == total.passes.end()) total.passes.push_back(p);
+    else it->gpuMs += p.gpuMs;
+  }
+  total.gpuTotalMs += more.gpuTotalMs;
+}
+
+std::string frameName(int index, const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", index, extension);
+  return name;
+}
+}  // namespace
+
+int runCapture(const CaptureOptions& options) {
+  if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
+  if (options.frames < 1) throw InputError("--frames: must be at least 1");
+  if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
+  if (options.accumulate < 1 || options.accumulate > kMaxAccumulate)
+    throw InputError("--accumulate: must be between 1 and " + std::to_string(kMaxAccumulate));
+  LoadedScene loaded = loadScene(options.scene);
+  Config& config = loaded.config;
+  const std::filesystem::path out(options.outDir);
+  checkWritableFolder(out);
+  const Registry registry = parameterRegistry(loaded.materials);
+  std::optional<Script> script;
+  if (!options.script.empty()) {
+    script = loadScript(options.script, registry);
+    for (const ScriptCommand& c : script->commands) {
+      if (windowOnly(c.action))
+        throw InputError(c.where + ": " + std::string(scriptActionName(c.action)) +
+                         " applies to view only (capture writes every frame)");
+      if (c.frame >= options.frames)
+        throw InputError(c.where + ": frame " + std::to_string(c.frame) + " is beyond --frames " +
+                         std::to_string(options.frames));
+    }
+  }
+  if (!options.video.empty()) {
+    checkVideoOutput(options.video);
+    checkWritableFolder(std::filesystem::path(options.video).parent_path().empty()
+                            ? std::filesystem::path(".")
+                            : std::filesystem::path(options.video).parent_path());
+  }
+
+  gpu::ContextOptions contextOptions;
+  contextOptions.backend = gpu::parseGlBackend(options.gl);
+  contextOptions.visible = false;
+  auto context = gpu::GlContext::create(contextOptions);
+  const gpu::ShaderLibrary shaders = makeShaderLibrary(options.scene.shaderDir);
+  sss::Renderer renderer(shaders, config.scene, config.render);
+
+  RunRecord run;
+  run.command = "capture";
+  run.presetName = loaded.presetName;
+  run.presetPath = loaded.presetPath.string();
+  run.backend = context->backend();
+  run.gl = context->info();
+  run.width = config.render.width;
+  run.height = config.render.height;
+  run.plan = sss::Renderer::plan(config.scene, config.render);
+  run.accumulate = options.accumulate;
+  run.parameters = registry.snapshot(config);
+  if (options.scene.explain)
+    for (const auto& p : run.plan) std::printf("pass %-20s %s\n", p.name.c_str(), p.reason.c_str());
+
+  // Render every frame before writing any file, so that a failure leaves nothing behind.
+  std::vector<gpu::Image> images;
+  std::vector<gpu::ToneMapSettings> toneMaps;
+  // Frame i is at start + i / fps unless a script pauses, seeks or changes the speed (no wrapping:
+  // a capture past the animation's end shows the time it asks for).
+  Playback playback(options.timeS.value_or(config.scene.startS), config.scene.durationS, config.scene.loop);
+  nlohmann::json parameters = run.parameters;
+  for (int i = 0; i < options.frames; ++i) {
+    FrameRecord frame;
+    frame.index = i;
+    playback.setFrame(i, options.fps);
+    std::string where;  // the frame's last script command, to locate a change the GPU refuses
+    if (script)
+      for (const ScriptCommand* c : script->at(i)) {
+        applyScriptCommand(*c, config, registry, playback);
+        where = c->where;
+      }
+    if (!where.empty()) {
+      nlohmann::json now = registry.snapshot(config);
+      frame.changed = changedParameters(parameters, now);
+      parameters = std::move(now);
+    }
+    frame.timeS = playback.rawTime();
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      // With --accumulate N the frame's time is rendered N times (a paused window's progressive
+      // accumulation); its GPU timings are the sums over those renders, like its wall time.
+      frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+      for (int a = 1; a < options.accumulate; ++a) addTimings(frame.gpu, renderer.render(config.scene, config.render, frame.timeS));
+    } catch (const std::invalid_argument& e) {
+      if (where.empty()) throw;
+      throw InputError(where + ": " + e.what());
+    }
+    frame.sss = mapsRecord(renderer);
+    for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
+      if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
+    glFinish();
+    frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    images.push_back(renderer.readRadiance());
+    toneMaps.push_back(config.render.toneMap);  // a script may change the exposure mid-sequence
+    if (i > 0) {
+      // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
+      const std::vector<std::uint8_t> receivers = renderer.receiverMask();
+      if (std::any_of(receivers.begin(), receivers.end(), [](std::uint8_t m) { return m != 0; }))
+        frame.receiverChange = gpu::relativeChange(images[images.size() - 1], images[images.size() - 2], receivers);
+    }
+    run.frames.push_back(std::move(frame));
+  }
+  run.gpuBytes = renderer.gpuBytes();
+  run.triangles = renderer.triangleCount();  // after the frames: includes the last field extraction
+  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
+    const sss::MapCoverage coverage = renderer.mapCoverage();
+    nlohmann::json pearling = nlohmann::json::array();
+    for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, maps->lightMapSize())) {
+      pearling.push_back({{"object", w.object}, {"band", w.band}, {"mean_free_path_mm", w.meanFreePathMm},
+                          {"light_texel_mm", w.texelMm}});
+      std::fprintf(stderr, "tallow: warning: pearling on %s (band %d): 1/sigma_tr = %.3g mm is below the light "
+                           "G-buffer texel of %.3g mm; raise sss.light_map_size\n",
+                   w.object.c_str(), w.band, w.meanFreePathMm, w.texelMm);
+    }
+    // A point light inside a translucent object's bounds with planar sampling: the paper's Fig. 4a
+    // noise; allowed (it is how the comparison is made) but said.
+    nlohmann::json warnings = nlohmann::json::array();
+    if (!config.render.sss.stereographic)
+      for (const sss::Light& l : config.scene.lights) {
+        if (l.kind != sss::LightKind::Point) continue;
+        const glm::vec3 c = maps->sphere().centre;
+        if (glm::length(l.position - c) < maps->sphere().radius) {
+          const std::string w = "a point light lies inside the translucent objects' bounds with sss.stereographic off: "
+                                "planar sampling of its cube G-buffer is noisy there (the paper's Fig. 4a)";
+          warnings.push_back(w);
+          std::fprintf(stderr, "tallow: warning: %s\n", w.c_str());
+        }
+      }
+    run.sss = {{"map_bytes", maps->bytes()},
+               {"warnings", warnings},
+               {"light_map_size", maps->lightMapSize()},
+               {"frames_accumulated", maps->frames()},
+               {"translucent_pixels", coverage.translucentPixels},
+               {"unseen_pixels", coverage.unseenPixels},
+               {"unseen_share", coverage.unseenShare()},
+               {"pearling", pearling}};
+  }
+  if (const sss::Sslpv* lpv = renderer.sslpv()) {
+    const sss::SslpvGrid& g = lpv->grid();
+    run.sss["sslpv"] = {{"grid", g.size},
+                        {"cell_mm", g.cellMm()},
+                        {"origin_m", {g.origin.x, g.origin.y, g.origin.z}},
+                        {"bytes", lpv->bytes()}};
+  }
+
+  if (!options.video.empty())
+    for (const gpu::Image& image : images)
+      if (image.width != images.front().width || image.height != images.front().height)
+        throw InputError("--video: the script changes the image size, which a video cannot have");
+  std::filesystem::create_directories(out);
+  for (int i = 0; i < options.frames; ++i) {
+    const auto& image = images[static_cast<std::size_t>(i)];
+    gpu::writePng(out / frameName(i, "png"), image, toneMaps[static_cast<std::size_t>(i)]);
+    gpu::writeExr(out / frameName(i, "exr"), image, options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
+                  {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
+  }
+  if (!options.video.empty()) {
+    writeVideo(options.video, images.front().width, images.front().height, options.fps, options.frames, [&](int i) {
+      const auto k = static_cast<std::size_t>(i);
+      return gpu::toneMappedRgb8(images[k], toneMaps[k]);
+    });
+  }
+  gpu::writeTextFileAtomically(out / "stats.json", toJson(run).dump(2) + "\n");
+  std::printf("tallow: wrote %d frame(s) of %s (%dx%d, %s) to %s\n", options.frames, loaded.presetName.c_str(),
+              run.width, run.height, run.gl.renderer.c_str(), out.string().c_str());
+  return 0;
+}
+
+}  // namespace tallow::app

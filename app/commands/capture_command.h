@@ -1,0 +1,37 @@
+#pragma once
+// `tallow capture`: renders frames headless and writes DIR/frame_NNNN.png (tone-mapped sRGB),
+// DIR/frame_NNNN.exr (linear) and DIR/stats.json. Nothing is written unless every frame rendered;
+// each file is written whole or not at all.
+#include <optional>
+#include <string>
+
+#include "app/config/setup.h"
+
+namespace tallow::app {
+
+/// Upper bound of capture --accumulate (a guard against a typo that would run for hours).
+inline constexpr int kMaxAccumulate = 4096;
+
+struct CaptureOptions {
+  SceneOptions scene;
+  std::string gl = "osmesa";
+  std::string outDir;
+  int frames = 1;
+  std::optional<double> timeS;  ///< animation time of the first frame; unset: the preset's start_s
+  double fps = 30.0;
+  bool exrFloat = false;  ///< 32-bit float EXR channels instead of half
+  std::string script;     ///< timed parameter changes (app/playback/view_script.h); empty: none
+  std::string video;      ///< also encode the frames into this video with ffmpeg; empty: none
+  /// Renders per written frame, all at its time: the progressive methods accumulate over them as
+  /// in a paused window, and the last is written (1: every render is written, the sequence as played).
+  int accumulate = 1;
+};
+
+/// Returns the process exit code; throws InputError / ContextError / ShaderError / runtime_error
+/// with one line on failure.
+int runCapture(const CaptureOptions& options);
+
+/// Throws InputError when `dir` cannot be created or written (checked before rendering).
+void checkWritableFolder(const std::filesystem::path& dir);
+
+}  // namespace tallow::app

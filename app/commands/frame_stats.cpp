@@ -1,0 +1,87 @@
+#include "app/commands/frame_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace tallow::app {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+nlohmann::json mapsRecord(const sss::Renderer& renderer) {
+  const sss::RadiosityMaps* maps = renderer.radiosityMaps();
+  if (!maps) return nullptr;
+  return {{"maps", maps->views().size()}, {"frames_accumulated", maps->frames()}, {"map_bytes", maps->bytes()}};
+}
+
+nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after) {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto it = after.begin(); it != after.end(); ++it)
+    if (!before.contains(it.key()) || before.at(it.key()) != it.value()) out[it.key()] = it.value();
+  return out;
+}
+
+nlohmann::json toJson(const RunRecord& run) {
+  using nlohmann::json;
+  json frames = json::array();
+  std::vector<double> wall;
+  std::map<std::string, std::vector<double>> perPass;
+  std::vector<double> gpuTotal, changes;
+  for (const FrameRecord& f : run.frames) {
+    json passes = json::object();
+    for (const auto& p : f.gpu.passes) {
+      passes[p.name] = p.gpuMs;
+      perPass[p.name].push_back(p.gpuMs);
+    }
+    frames.push_back({{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
+                      {"gpu_ms", passes}, {"gpu_total_ms", f.gpu.gpuTotalMs},
+                      {"receiver_change", std::isfinite(f.receiverChange) ? json(f.receiverChange) : json(nullptr)},
+                      {"point_lights", [&] {
+                         json lights = json::array();
+                         for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
+                         return lights;
+                       }()},
+                      {"changed", f.changed},
+                      {"sss", f.sss}});
+    if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
+    wall.push_back(f.wallMs);
+    gpuTotal.push_back(f.gpu.gpuTotalMs);
+  }
+  json passMedians = json::object();
+  for (auto& [name, values] : perPass) passMedians[name] = median(values);
+  json plan = json::array();
+  for (const auto& p : run.plan) plan.push_back({{"name", p.name}, {"reason", p.reason}});
+  return {
+      {"command", run.command},
+      {"preset", {{"name", run.presetName}, {"path", run.presetPath}}},
+      {"gl",
+       {{"backend", std::string(gpu::glBackendName(run.backend))},
+        {"GL_VENDOR", run.gl.vendor},
+        {"GL_RENDERER", run.gl.renderer},
+        {"GL_VERSION", run.gl.version},
+        {"GL_SHADING_LANGUAGE_VERSION", run.gl.glsl}}},
+      {"resolution", {run.width, run.height}},
+      {"accumulate", run.accumulate},
+      {"triangles", run.triangles},
+      {"gpu_memory_bytes", run.gpuBytes},
+      {"plan", plan},
+      {"frames", frames},
+      {"summary",
+       {{"frames", run.frames.size()},
+        {"wall_ms_median", median(wall)},
+        {"gpu_total_ms_median", median(gpuTotal)},
+        {"gpu_ms_median", passMedians},
+        {"receiver_change_mean",
+         changes.empty() ? json(nullptr) : json(std::accumulate(changes.begin(), changes.end(), 0.0) / double(changes.size()))}}},
+      {"parameters", run.parameters},
+      {"sss", run.sss},
+  };
+}
+
+}  // namespace tallow::app

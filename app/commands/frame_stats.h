@@ -1,0 +1,52 @@
+#pragma once
+// stats.json: what ran, on which GL, how long each pass took, and every parameter's value.
+#include <nlohmann/json.hpp>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "app/config/config.h"
+#include "gpu/gl_context.h"
+#include "sss/renderer.h"
+
+namespace tallow::app {
+
+struct FrameRecord {
+  int index = 0;
+  double timeS = 0.0;
+  double wallMs = 0.0;  ///< CPU wall time from the start of the frame to glFinish
+  sss::FrameTimings gpu;
+  /// gpu::relativeChange of the receivers' radiance against the frame before (NaN: first frame).
+  double receiverChange = std::numeric_limits<double>::quiet_NaN();
+  std::vector<glm::vec3> pointLights;  ///< where the point lights stood (flames move with their candle)
+  /// Parameters whose value changed since the frame before (--script, the view's panel), {key: value}.
+  nlohmann::json changed = nlohmann::json::object();
+  /// The radiosity maps after this frame (null when none): K, F accumulated, their bytes.
+  nlohmann::json sss;
+};
+
+/// The radiosity maps' state after a frame, for FrameRecord::sss (null when the renderer has none).
+nlohmann::json mapsRecord(const sss::Renderer& renderer);
+/// {key: new value} of every parameter whose value differs between two registry snapshots.
+nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after);
+
+struct RunRecord {
+  std::string command;
+  std::string presetName, presetPath;
+  gpu::GlBackend backend = gpu::GlBackend::OsMesa;
+  gpu::GlInfo gl;
+  int width = 0, height = 0;
+  std::size_t triangles = 0;
+  std::size_t gpuBytes = 0;
+  std::vector<sss::PlannedPass> plan;
+  std::vector<FrameRecord> frames;
+  int accumulate = 1;  ///< renders per frame at its time (capture --accumulate); timings sum them
+  nlohmann::json parameters;
+  nlohmann::json sss;  ///< radiosity maps of the last frame (null when the method does not run)
+};
+
+double median(std::vector<double> values);
+nlohmann::json toJson(const RunRecord& run);
+
+}  // namespace tallow::app

@@ -1,0 +1,47 @@
+#include "app/commands/gnuplot.h"
+
+#include <cstdlib>
+#include <stdexcept>
+
+namespace tallow::app {
+namespace {
+/// Every plot of ours: CSV input, PNG output of one size.
+constexpr const char* kPreamble = "set datafile separator ','\nset terminal pngcairo size 900,600 font ',11'\n";
+}  // namespace
+
+bool gnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+bool runGnuplot(const std::filesystem::path& script, const PlotScriptWriter& writeScript,
+                const std::vector<std::filesystem::path>& outputs, const std::string& what, bool keepScript) {
+  if (!gnuplotAvailable()) {
+    std::fprintf(stderr, "tallow: gnuplot is not installed; wrote the CSV files without plots\n");
+    return false;
+  }
+  std::vector<std::filesystem::path> temporaries;
+  for (const auto& o : outputs) {
+    std::string name = ".";
+    name += o.filename().string();
+    name += ".tmp";
+    temporaries.push_back(o.parent_path() / name);
+  }
+  {
+    std::FILE* f = std::fopen(script.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + script.string());
+    std::fputs(kPreamble, f);
+    writeScript(f, temporaries);
+    std::fclose(f);
+  }
+  std::string command = "gnuplot '";
+  command += script.string();
+  command += "' 2>/dev/null";
+  const int rc = std::system(command.c_str());
+  if (!keepScript) std::filesystem::remove(script);
+  if (rc != 0) {
+    for (const auto& t : temporaries) std::filesystem::remove(t);
+    throw std::runtime_error("gnuplot failed to draw " + what);
+  }
+  for (std::size_t i = 0; i < outputs.size(); ++i) std::filesystem::rename(temporaries[i], outputs[i]);
+  return true;
+}
+
+}  // namespace tallow::app

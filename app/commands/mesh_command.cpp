@@ -1,0 +1,84 @@
+#include "app/commands/mesh_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/commands/field_command.h"
+#include "app/config/input_error.h"
+#include "app/config/params.h"
+#include "geometry/cpu_mesher.h"
+#include "geometry/gpu_dual_contouring.h"
+#include "geometry/ply_writer.h"
+#include "gpu/gl_context.h"
+
+namespace tallow::app {
+namespace {
+
+/// Appends `part` (field units) to `out` moved into world units by `model`.
+void appendWorld(geometry::TriangleMesh& out, const geometry::TriangleMesh& part, const glm::dmat4& model) {
+  const auto offset = static_cast<std::uint32_t>(out.positions.size());
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(model)));
+  for (const glm::vec3& p : part.positions) out.positions.emplace_back(model * glm::dvec4(glm::dvec3(p), 1.0));
+  for (const glm::vec3& n : part.normals) out.normals.emplace_back(glm::normalize(normalMatrix * glm::dvec3(n)));
+  for (const auto& t : part.triangles) out.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
+}  // namespace
+
+geometry::TriangleMesh meshFields(const MeshOptions& options) {
+  if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
+  LoadedScene loaded = loadScene(options.scene);
+  if (options.res != 0) {
+    try {
+      parameterRegistry(loaded.materials).set(loaded.config, "field.res", options.res);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--res: ") + e.what());
+    }
+  }
+  const int res = loaded.config.render.fieldRes;
+  const std::vector<PlacedField> fields = placeFields(loaded.config.scene, loaded.presetName);
+
+  std::unique_ptr<gpu::GlContext> context;
+  std::unique_ptr<gpu::ShaderLibrary> shaders;
+  if (!options.cpu) {
+    gpu::ContextOptions contextOptions;
+    contextOptions.backend = gpu::parseGlBackend(options.gl);
+    contextOptions.visible = false;
+    context = gpu::GlContext::create(contextOptions);
+    shaders = std::make_unique<gpu::ShaderLibrary>(makeShaderLibrary(options.scene.shaderDir));
+  }
+  geometry::TriangleMesh world;
+  for (const PlacedField& f : fields) {
+    const geometry::SampledLattice lattice = f.source.sample(options.timeS, res);
+    geometry::TriangleMesh part;
+    if (options.cpu) {
+      part = geometry::meshOnCpu(lattice, *f.source.at(options.timeS));
+    } else {
+      geometry::GpuDualContouring dc(*shaders, res);
+      dc.upload(lattice);
+      dc.extract();
+      part = dc.readBack();
+    }
+    if (part.normals.size() != part.positions.size()) geometry::computeVertexNormals(part);
+    appendWorld(world, part, f.model);
+  }
+  if (world.triangles.empty())  // e.g. a --set that moved everything out of the lattice
+    throw InputError("the field objects of preset " + quote(loaded.presetName) + " have no surface at t = " +
+                     std::to_string(options.timeS) + " s");
+  return world;
+}
+
+int runMesh(const MeshOptions& options) {
+  if (options.out.empty()) throw InputError("mesh: --out MESH.ply is required");
+  const std::filesystem::path out(options.out);
+  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(folder)) throw InputError("--out: folder " + folder.string() + " does not exist");
+  const geometry::TriangleMesh mesh = meshFields(options);
+  geometry::writePly(out, mesh);
+  std::printf("tallow: %zu triangle(s), %zu vertices (%s) -> %s\n", mesh.triangles.size(), mesh.positions.size(),
+              options.cpu ? "OpenVDB volumeToMesh" : "GPU dual contouring", options.out.c_str());
+  return 0;
+}
+
+}  // namespace tallow::app

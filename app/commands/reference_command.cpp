@@ -1,0 +1,138 @@
+#include "app/commands/reference_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+
+#include "app/config/input_error.h"
+#include "gpu/image_io.h"
+#include "sss/bssrdf/bssrdf.h"
+
+namespace tallow::app {
+namespace {
+
+std::string number(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+sss::ReferenceSettings referenceSettings(const ReferenceOptions& options) {
+  sss::ReferenceSettings s;
+  s.timeS = options.timeS;
+  s.maxPasses = options.spp > 0 ? options.spp : 0;
+  s.relError = std::isnan(options.relError) ? 0.0 : options.relError;
+  s.pointsPerPass = options.points;
+  s.seed = options.seed;
+  s.threads = options.threads;
+  s.emergentLight = options.emergent > 0;
+  if (s.emergentLight) s.emitterPoints = options.emergent;
+  return s;
+}
+
+/// `REF<suffix>.exr` beside `REF.exr`.
+std::filesystem::path besideOutput(const std::filesystem::path& out, const std::string& suffix) {
+  std::filesystem::path p = out;
+  std::string name = out.stem().string();
+  name += suffix;
+  name += out.extension().string();
+  p.replace_filename(name);
+  return p;
+}
+
+}  // namespace
+
+void validateReferenceOptions(const ReferenceOptions& options) {
+  if (options.out.empty()) throw InputError("reference: --out REF.exr is required");
+  if (options.spp != kNotGiven && options.spp < 1) throw InputError("--spp: must be at least 1");
+  if (!std::isnan(options.relError) && !(std::isfinite(options.relError) && options.relError > 0.0))
+    throw InputError("--rel-error: must be a positive number");
+  if (options.spp == kNotGiven && std::isnan(options.relError))
+    throw InputError("reference: give --spp S (passes) or --rel-error E (relative standard error)");
+  if (options.points < 0) throw InputError("--points: must be 0 (automatic) or more");
+  if (options.threads < 0) throw InputError("--threads: must be at least 0");
+  if (options.emergent < 0) throw InputError("--emergent: emitter points per object and pass must be at least 1");
+  if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
+}
+
+std::filesystem::path standardErrorPath(const std::filesystem::path& out) { return besideOutput(out, "_stderr"); }
+
+std::filesystem::path emergentPath(const std::filesystem::path& out) { return besideOutput(out, "_emergent"); }
+
+std::string emergentFlag() {
+  std::string flag = "--emergent{";
+  flag += std::to_string(sss::kDefaultEmitterPoints);
+  flag += "}";
+  return flag;
+}
+
+sss::ReferenceResult computeReference(const ReferenceOptions& options) {
+  validateReferenceOptions(options);
+  const LoadedScene loaded = loadScene(options.scene);
+  try {
+    return sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+}
+
+int runReference(const ReferenceOptions& options) {
+  validateReferenceOptions(options);
+  const std::filesystem::path out(options.out);
+  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(folder)) throw InputError("--out: folder " + folder.string() + " does not exist");
+  const LoadedScene loaded = loadScene(options.scene);
+  sss::ReferenceResult r;
+  try {
+    r = sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options),
+                             [](int passes, double err) {
+                               if ((passes & (passes - 1)) == 0)
+                                 std::fprintf(stderr, "tallow: reference pass %d, relative standard error %s\n", passes,
+                                              number(err).c_str());
+                               return true;
+                             });
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  std::map<std::string, std::string> attributes{
+      {"tallow.preset", loaded.presetName},
+      {"tallow.renderer", "tallow reference (CPU, Embree + TBB)"},
+      {"tallow.spp", std::to_string(r.passes)},
+      {"tallow.passes", std::to_string(r.passes)},
+      {"tallow.points_per_pass", std::to_string(r.pointsPerPass)},
+      {"tallow.near_field_points", number(r.nearFieldPoints)},
+      {"tallow.rel_error", number(r.relError)},
+      {"tallow.rel_error_statistic", sss::kReferenceErrorStatistic},
+      {"tallow.seed", std::to_string(options.seed)},
+      {"tallow.time_s", number(options.timeS)},
+      {"tallow.model", std::string(sss::bssrdfModelName(loaded.config.render.sss.model))},
+      {"tallow.triangles", std::to_string(r.triangles)},
+      {"tallow.seconds", number(r.seconds)},
+      {"tallow.emergent", r.emitterPoints > 0 ? "on" : "off"}};
+  if (r.emitterPoints > 0) {
+    attributes["tallow.emitter_points"] = std::to_string(r.emitterPoints);
+    attributes["tallow.emergent_pixels"] = std::to_string(r.emergentPixels);
+    attributes["tallow.emergent_rel_error"] = number(r.emergentRelError);
+    attributes["tallow.emergent_rel_error_statistic"] = sss::kEmergentErrorStatistic;
+  }
+  if (r.translucentPixels > 0 && r.nearFieldPoints < 1.0)
+    std::fprintf(stderr,
+                 "tallow: warning: only %.2g surface point(s) per pass fall within 1/sigma_t' of a pixel's surface point: "
+                 "the mean and its error estimate are biased low until many passes have run; raise --points "
+                 "(or leave it out to choose it automatically)\n",
+                 r.nearFieldPoints);
+  gpu::writeExr(out, r.radiance, gpu::ExrPixelType::Float, attributes);
+  gpu::writeExr(standardErrorPath(out), r.standardError, gpu::ExrPixelType::Float, attributes);
+  if (r.emitterPoints > 0) gpu::writeExr(emergentPath(out), r.emergent, gpu::ExrPixelType::Float, attributes);
+  std::printf("tallow: reference of %s (%dx%d): %d pass(es) x %d points, relative standard error %s, %.1f s -> %s\n",
+              loaded.presetName.c_str(), r.radiance.width, r.radiance.height, r.passes, r.pointsPerPass,
+              number(r.relError).c_str(), r.seconds, options.out.c_str());
+  if (r.emitterPoints > 0)
+    std::printf("tallow: emergent light: %d emitter points per object and pass, %d receiver pixel(s) lit, relative "
+                "standard error %s -> %s\n",
+                r.emitterPoints, r.emergentPixels, number(r.emergentRelError).c_str(), emergentPath(out).string().c_str());
+  return 0;
+}
+
+}  // namespace tallow::app

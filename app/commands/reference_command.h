@@ -1,0 +1,54 @@
+#pragma once
+// `tallow reference`: the CPU ground truth of a preset (sss/reference/reference_integrator.h) with the same
+// camera, size and parameters as `capture`, written as REF.exr (32-bit float, linear) and
+// REF_stderr.exr (the per-pixel standard error of the mean), with --emergent also REF_emergent.exr
+// (the light leaving the translucent objects onto the receivers alone), with the passes, points per
+// pass, error estimate and seed in the EXR header. docs/reference.md.
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "app/config/setup.h"
+#include "sss/reference/reference_integrator.h"
+
+namespace tallow::app {
+
+/// --spp not given.
+inline constexpr int kNotGiven = std::numeric_limits<int>::min();
+
+struct ReferenceOptions {
+  SceneOptions scene;
+  double timeS = 0.0;
+  int spp = kNotGiven;  ///< passes (--spp)
+  double relError = std::numeric_limits<double>::quiet_NaN();  ///< --rel-error; NaN: not given
+  int points = 0;           ///< --points: surface points per translucent object and pass; 0: automatic
+  std::uint64_t seed = 1;   ///< --seed
+  int threads = 0;          ///< --threads; 0: all cores
+  /// --emergent[=N]: emitter points per translucent object and pass of the emergent light onto the
+  /// receivers (sss::kDefaultEmitterPoints when given without a value); 0: off.
+  int emergent = 0;
+  std::string out;          ///< REF.exr
+};
+
+/// Checks the options that need no scene; throws InputError with one line (`--spp: must be at
+/// least 1`, `--rel-error: must be a positive number`, neither given, --points < 0, …).
+void validateReferenceOptions(const ReferenceOptions& options);
+
+/// REF_stderr.exr beside REF.exr.
+std::filesystem::path standardErrorPath(const std::filesystem::path& out);
+
+/// REF_emergent.exr beside REF.exr (with --emergent).
+std::filesystem::path emergentPath(const std::filesystem::path& out);
+
+/// The option that turns the emergent light on, with its default emitter count: `--emergent{N}`
+/// (CLI11's flag-with-value syntax: `--emergent` gives N, `--emergent=M` gives M).
+std::string emergentFlag();
+
+/// Loads the scene as `capture` does and integrates it; nothing written.
+sss::ReferenceResult computeReference(const ReferenceOptions& options);
+
+/// Returns the exit code; throws InputError / std::runtime_error with one line.
+int runReference(const ReferenceOptions& options);
+
+}  // namespace tallow::app

@@ -1,0 +1,180 @@
+#include "app/view/view_param_widgets.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace tallow::app {
+
+namespace {
+
+using json = nlohmann::json;
+
+// Widget choice (ParamWidget): linear sliders over spans a slider can resolve, logarithmic ones over
+// positive ranges spanning decades, drag boxes for the rest (coordinates, counts from 0).
+constexpr double kMaxLinearIntSpan = 1024;
+constexpr double kMaxLinearFloatSpan = 200;
+constexpr double kMinLogRatio = 100;
+/// Long choice lists (the materials) get a text filter in their combo.
+constexpr std::size_t kFilterChoices = 12;
+/// Drag speed of float drag boxes: this fraction of the value per pixel, at least kMinDragSpeed.
+constexpr float kDragFraction = 0.005f;
+constexpr float kMinDragSpeed = 1e-4f;
+const ImVec4 kErrorColour{1.0f, 0.35f, 0.3f, 1.0f};
+
+bool containsNoCase(const std::string& text, const std::string& part) {
+  const auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  return lower(text).find(lower(part)) != std::string::npos;
+}
+
+void tooltip(const Registry::Param& p) {
+  if (!ImGui::IsItemHovered()) return;
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+  ImGui::TextUnformatted(p.key.c_str());
+  ImGui::Separator();
+  ImGui::TextUnformatted(p.help.c_str());
+  if (!p.units.empty()) ImGui::Text("units: %s", p.units.c_str());
+  if (p.type == "int" || p.type == "float" || p.type == "vec3")
+    ImGui::Text("range: [%s, %s]", formatNumber(p.min).c_str(), formatNumber(p.max).c_str());
+  ImGui::Text("default: %s", p.defaultValue ? p.defaultValue->dump().c_str() : "the preset's");
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
+}
+
+}  // namespace
+
+std::string paramGroup(const std::string& key, const std::vector<std::string>& keys) {
+  const std::size_t dot = key.find('.');
+  if (dot != std::string::npos) return key.substr(0, dot);
+  for (const std::string& k : keys)
+    if (k.size() > key.size() && k.compare(0, key.size(), key) == 0 && k[key.size()] == '.') return key;
+  return "general";
+}
+
+ParamWidget paramWidget(const Registry::Param& p) {
+  if (p.type == "bool") return ParamWidget::Checkbox;
+  if (p.type == "enum") return ParamWidget::Combo;
+  const double span = p.max - p.min;
+  if (span <= (p.type == "int" ? kMaxLinearIntSpan : kMaxLinearFloatSpan)) return ParamWidget::Slider;
+  if (p.min > 0.0 && p.max / p.min >= kMinLogRatio) return ParamWidget::LogSlider;
+  return ParamWidget::Drag;
+}
+
+void ParamWidgets::apply(const Registry::Param& p, const json& value, const Setter& set) {
+  const std::string refused = set(p.key, value);
+  if (refused.empty()) errors_.erase(p.key);
+  else errors_[p.key] = refused;
+}
+
+void ParamWidgets::draw(const Registry& registry, const Config& config, const Setter& set) {
+  const std::vector<std::string> keys = registry.keys();
+  std::vector<std::string> groups;
+  for (const std::string& k : keys) {
+    const std::string g = paramGroup(k, keys);
+    if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+  }
+  const json values = registry.snapshot(config);
+  for (const std::string& group : groups) {
+    ImGui::PushID(group.c_str());
+    const bool open = ImGui::TreeNodeEx(group.c_str(), group == "general" || group == "sss" ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+    if (open) {
+      for (const Registry::Param& p : registry.params()) {
+        if (paramGroup(p.key, keys) != group) continue;
+        const std::string label = p.key.size() > group.size() && p.key.compare(0, group.size() + 1, group + ".") == 0
+                                      ? p.key.substr(group.size() + 1)
+                                      : p.key;
+        drawParam(p, values.at(p.key), label, set);
+      }
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+}
+
+void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const std::string& label, const Setter& set) {
+  ImGui::PushID(p.key.c_str());
+  if (value.is_null()) {
+    ImGui::TextDisabled("%s: not in this scene", label.c_str());
+    tooltip(p);
+    ImGui::PopID();
+    return;
+  }
+  const ParamWidget widget = paramWidget(p);
+  const char* name = label.c_str();
+  if (p.type == "bool") {
+    bool v = value.get<bool>();
+    if (ImGui::Checkbox(name, &v)) apply(p, v, set);
+    tooltip(p);
+  } else if (p.type == "enum") {
+    const std::string current = value.get<std::string>();
+    if (ImGui::BeginCombo(name, current.c_str(), ImGuiComboFlags_HeightLarge)) {
+      std::string& filter = filters_[p.key];
+      if (p.choices.size() > kFilterChoices) {
+        if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+        ImGui::InputTextWithHint("##filter", "filter", &filter);
+      }
+      for (const std::string& choice : p.choices) {
+        if (!filter.empty() && !containsNoCase(choice, filter)) continue;
+        const bool selected = choice == current;
+        if (ImGui::Selectable(choice.c_str(), selected) && !selected) apply(p, choice, set);
+        if (selected) ImGui::SetItemDefaultFocus();
+      }
+      ImGui::EndCombo();
+    }
+    tooltip(p);
+  } else if (p.type == "int") {
+    // Applied when the drag ends: each new integer may reallocate textures or restart the maps.
+    const auto pending = pendingInts_.find(p.key);
+    int v = pending != pendingInts_.end() ? pending->second : static_cast<int>(value.get<std::int64_t>());
+    const int lo = static_cast<int>(p.min), hi = static_cast<int>(p.max);
+    bool changed = false;
+    if (widget == ParamWidget::Drag) changed = ImGui::DragInt(name, &v, 1.0f, lo, hi);
+    else changed = ImGui::SliderInt(name, &v, lo, hi, "%d", widget == ParamWidget::LogSlider ? ImGuiSliderFlags_Logarithmic : 0);
+    if (changed) pendingInts_[p.key] = v;
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+      apply(p, v, set);
+      pendingInts_.erase(p.key);
+    } else if (!ImGui::IsItemActive()) {
+      pendingInts_.erase(p.key);
+    }
+    tooltip(p);
+  } else if (p.type == "float") {
+    float v = value.get<float>();
+    const float lo = static_cast<float>(p.min), hi = static_cast<float>(p.max);
+    bool changed = false;
+    if (widget == ParamWidget::Drag)
+      changed = ImGui::DragFloat(name, &v, std::max(std::abs(v) * kDragFraction, kMinDragSpeed), lo, hi, "%.4g");
+    else
+      changed = ImGui::SliderFloat(name, &v, lo, hi, "%.4g",
+                                   widget == ParamWidget::LogSlider ? ImGuiSliderFlags_Logarithmic : 0);
+    if (changed) apply(p, floatToJson(v), set);
+    tooltip(p);
+  } else {  // vec3
+    float v[3] = {value[0].get<float>(), value[1].get<float>(), value[2].get<float>()};
+    const float lo = static_cast<float>(p.min), hi = static_cast<float>(p.max);
+    bool changed = false;
+    if (widget == ParamWidget::Slider) {
+      changed = ImGui::SliderFloat3(name, v, lo, hi, "%.3f");
+    } else {
+      const float largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+      changed = ImGui::DragFloat3(name, v, std::max(largest * kDragFraction, kMinDragSpeed), lo, hi, "%.4g");
+    }
+    if (changed) apply(p, json::array({floatToJson(v[0]), floatToJson(v[1]), floatToJson(v[2])}), set);
+    tooltip(p);
+  }
+  if (const auto e = errors_.find(p.key); e != errors_.end()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
+    ImGui::TextWrapped("%s", e->second.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::PopID();
+}
+
+}  // namespace tallow::app

@@ -1,0 +1,46 @@
+#pragma once
+// The registry's parameters as Dear ImGui widgets (the view window's "Parameters" section), so a
+// parameter added to app/config/params.cpp appears in the panel with no panel code: grouped by the key's
+// prefix ("sss.maps" → sss), one widget chosen from the type — enum: combo; bool: checkbox; int and
+// float: slider (logarithmic over wide positive ranges) or drag box; vec3: three of them — with the
+// help, units, range and default as tooltip. Edits go through a caller-given setter (the registry's
+// set); a refused value is not applied and its one-line message stays under the widget until the
+// next accepted edit of that parameter.
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/config/config.h"
+#include "app/config/registry.h"
+
+namespace tallow::app {
+
+/// The panel's group of a key: the part before the first dot; a key without a dot joins the group
+/// of its own name when other keys extend it ("material" with "material.eta"), else "general".
+std::string paramGroup(const std::string& key, const std::vector<std::string>& keys);
+
+/// Which widget a parameter gets (exposed for the tests of the choice).
+enum class ParamWidget { Checkbox, Combo, Slider, LogSlider, Drag };
+ParamWidget paramWidget(const Registry::Param& param);
+
+class ParamWidgets {
+ public:
+  /// Returns "" or the refusal of setting `key` to `value`.
+  using Setter = std::function<std::string(const std::string& key, const nlohmann::json& value)>;
+
+  /// Draws every parameter of `registry` with its value in `config` (inside an ImGui window).
+  void draw(const Registry& registry, const Config& config, const Setter& set);
+
+ private:
+  void drawParam(const Registry::Param& p, const nlohmann::json& value, const std::string& label, const Setter& set);
+  void apply(const Registry::Param& p, const nlohmann::json& value, const Setter& set);
+
+  std::map<std::string, std::string> errors_;   ///< refusals on show, by key
+  std::map<std::string, int> pendingInts_;      ///< integers being dragged (applied on release)
+  std::map<std::string, std::string> filters_;  ///< text filters of long combos
+};
+
+}  // namespace tallow::app

@@ -1,0 +1,560 @@
+#include "sss/maps/radiosity_maps.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "sss/maps/radiosity_estimator.h"
+#include "sss/view_setup.h"
+
+namespace tallow::sss {
+namespace {
+
+constexpr GLuint kLayerViewsBinding = 4;  // layered.geom
+/// Map memory allowed before the renderer refuses K × size² (colour with mipmaps + depth).
+constexpr std::size_t kMapMemoryBudget = std::size_t{4} << 30;
+
+const glm::mat4 kToTexture =
+    glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+
+int mipLevels(int size) { return static_cast<int>(std::floor(std::log2(static_cast<double>(size)))) + 1; }
+
+std::size_t mapBytes(int k, int size) {
+  const auto texels = static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * static_cast<std::size_t>(k);
+  return texels * 16 * 4 / 3 + texels * 4;  // RGBA32F with its mip chain (≤ 4/3), DEPTH32F
+}
+
+/// An orthonormal basis of the plane with normal `w`.
+void planeBasis(const glm::vec3& w, glm::vec3& t1, glm::vec3& t2) {
+  const glm::vec3 helper = std::abs(w.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  t1 = glm::normalize(glm::cross(helper, w));
+  t2 = glm::cross(w, t1);
+}
+
+/// GL state of the layered passes, restored to the defaults at the end of the scope.
+struct LayeredState {
+  LayeredState() {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+  }
+  ~LayeredState() {
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+};
+
+gpu::Texture colourArray(GLenum format, int size, int layers, int levels = 1) {
+  gpu::Texture t = gpu::Texture::create2DArray(format, size, size, layers, levels);
+  t.setFilter(levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST, levels > 1 ? GL_LINEAR : GL_NEAREST);
+  t.setWrap(GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+gpu::Texture cubeArray(GLenum format, int size, int cubes) {
+  gpu::Texture t = gpu::Texture::createCubeArray(format, size, cubes);
+  t.setFilter(GL_NEAREST, GL_NEAREST);
+  t.setWrap(GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+}  // namespace
+
+std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions, const glm::vec3& centre, float radius) {
+  std::vector<MapView> views;
+  const float r = std::max(radius, 1e-6f);
+  for (const glm::vec3& d : directions) {
+    MapView v;
+    v.direction = glm::normalize(d);
+    const glm::vec3 eye = centre + v.direction * (2.0f * r);
+    const glm::vec3 up = std::abs(v.direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::mat4 view = glm::lookAt(eye, centre, up);
+    const glm::mat4 projection = glm::ortho(-r, r, -r, r, r, 3.0f * r);  // the sphere spans [r, 3r]
+    v.viewProjection = projection * view;
+    v.toTexture = kToTexture * v.viewProjection;
+    views.push_back(v);
+  }
+  return views;
+}
+
+std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius) {
+  std::vector<glm::vec3> directions;
+  for (int i = 0; i < k; ++i) directions.emplace_back(haltonDirection<double>(static_cast<std::uint32_t>(i)));
+  return radiosityMapViews(directions, centre, radius);
+}
+
+void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry, const std::vector<int>& slots,
+                            const gpu::Buffer& layerViews, int instances) {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, layerViews.id());
+  program.set("uLayerBase", 0);
+  for (const DrawItem& item : geometry.items()) {
+    const int slot = slots[static_cast<std::size_t>(item.objectIndex)];
+    if (slot < 0) continue;
+    program.set("uModel", item.model);
+    program.set("uNormalMatrix", item.normalMatrix);
+    program.set("uSlot", slot);
+    item.draw(instances);
+  }
+}
+
+int mapCount(const Scene& scene, const RenderSettings& settings) {
+  return scene.mapDirections.empty() ? settings.sss.maps : static_cast<int>(scene.mapDirections.size());
+}
+
+BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geometry) {
+  geometry::Aabb box;
+  for (const DrawItem& item : geometry.items()) {
+    if (!scene.objects[static_cast<std::size_t>(item.objectIndex)].translucent || item.worldBounds.empty()) continue;
+    box.extend(item.worldBounds.min);
+    box.extend(item.worldBounds.max);
+  }
+  BoundingSphere s;
+  if (box.empty()) return s;
+  s.centre = box.centre();
+  s.radius = 0.5f * glm::length(box.size());
+  return s;
+}
+
+std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRadius, int lightMapSize) {
+  std::vector<PearlingWarning> out;
+  // A directional G-buffer spans the bounding sphere's diameter (directionalShadowViewProjection).
+  const double texelMm = 2.0 * static_cast<double>(sphereRadius) * 1000.0 / std::max(lightMapSize, 1);
+  for (const SceneObject& o : scene.objects) {
+    if (!o.translucent) continue;
+    const Material& m = o.material;
+    for (int c = 0; c < 3; ++c) {
+      const double sigmaTr = samplingSigmaTr(m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta);
+      if (1.0 / sigmaTr < texelMm) out.push_back({o.name, c, 1.0 / sigmaTr, texelMm});
+    }
+  }
+  return out;
+}
+
+int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize) {
+  int size = settings.sss.lightMapSize;
+  if (!settings.sss.lightMapAuto) return size;
+  double shortest = 1e300;  // mm
+  for (const SceneObject& o : scene.objects)
+    if (o.translucent)
+      for (int c = 0; c < 3; ++c)
+        shortest = std::min(shortest, 1.0 / samplingSigmaTr(o.material.sigma_a[c], o.material.sigma_s[c],
+                                                            o.material.g[c], o.material.eta));
+  const double diameterMm = 2.0 * static_cast<double>(sphereRadius) * 1000.0;
+  const int cap = std::min(maxSize, 8192);
+  while (size < cap && diameterMm / size > shortest) size *= 2;
+  return std::min(size, cap);
+}
+
+RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
+    : gbufferProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
+                                 {GL_GEOMETRY_SHADER, "maps/layered.geom"},
+                                 {GL_FRAGMENT_SHADER, "maps/light_gbuffer.frag"}}}),
+      depthProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
+                               {GL_GEOMETRY_SHADER, "maps/layered.geom"},
+                               {GL_FRAGMENT_SHADER, "maps/map_depth.frag"}}}),
+      mapProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
+                             {GL_GEOMETRY_SHADER, "maps/layered.geom"},
+                             {GL_FRAGMENT_SHADER, "maps/radiosity_map.frag"}}}),
+      mapGBufferProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
+                                    {GL_GEOMETRY_SHADER, "maps/layered.geom"},
+                                    {GL_FRAGMENT_SHADER, "maps/map_gbuffer.frag"}}}),
+      mapCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/radiosity_map.comp"}}}),
+      dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
+      dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(dummyDir_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+  glClearTexImage(dummyPoint_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+bool RadiosityMaps::applies(const Scene& scene, const RenderSettings& settings) {
+  return settings.sss.method == SssMethod::RadiosityMaps && needsLightGBuffers(scene, settings);
+}
+
+bool RadiosityMaps::needsLightGBuffers(const Scene& scene, const RenderSettings& settings) {
+  return (settings.sss.method == SssMethod::RadiosityMaps || settings.sss.method == SssMethod::NoCache) &&
+         std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) { return o.translucent; });
+}
+
+void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settings) {
+  if (!needsLightGBuffers(scene, settings)) return;
+  const SssSettings& s = settings.sss;
+  const auto translucent = std::count_if(scene.objects.begin(), scene.objects.end(),
+                                         [](const SceneObject& o) { return o.translucent; });
+  if (translucent > kMaxTranslucentObjects)
+    throw std::invalid_argument("the scene has " + std::to_string(translucent) + " translucent objects; the radiosity "
+                                "maps hold at most " + std::to_string(kMaxTranslucentObjects));
+  int dir = 0, point = 0;
+  for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dir : point)++;
+  if (dir > kMaxSssDirectionalLights || point > kMaxSssPointLights)
+    throw std::invalid_argument("the radiosity maps take at most " + std::to_string(kMaxSssDirectionalLights) +
+                                " directional and " + std::to_string(kMaxSssPointLights) + " point lights");
+  GLint maxLayers = 0, maxTexture = 0, maxCube = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  const int k = mapCount(scene, settings);
+  if (k > maxLayers)
+    throw std::invalid_argument("sss.maps: " + std::to_string(k) + " maps exceed this GPU's "
+                                "GL_MAX_ARRAY_TEXTURE_LAYERS of " + std::to_string(maxLayers));
+  if (s.mapSize > maxTexture)
+    throw std::invalid_argument("sss.map_size: " + std::to_string(s.mapSize) + " exceeds this GPU's GL_MAX_TEXTURE_SIZE of " +
+                                std::to_string(maxTexture));
+  if (s.lightMapSize > maxTexture || (point > 0 && s.lightMapSize > maxCube)) {
+    const bool texture = s.lightMapSize > maxTexture;
+    std::string limit = texture ? "GL_MAX_TEXTURE_SIZE of " : "GL_MAX_CUBE_MAP_TEXTURE_SIZE of ";
+    limit += std::to_string(texture ? maxTexture : maxCube);
+    throw std::invalid_argument("sss.light_map_size: " + std::to_string(s.lightMapSize) + " exceeds this GPU's " + limit);
+  }
+  if (6 * point > maxLayers)
+    throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
+  const std::size_t bytes = mapBytes(k, s.mapSize);
+  if (bytes > kMapMemoryBudget)
+    throw std::invalid_argument("sss.maps × sss.map_size²: " + std::to_string(k) + " maps of " +
+                                std::to_string(s.mapSize) + "² need " + std::to_string(bytes >> 20) +
+                                " MiB, over the " + std::to_string(kMapMemoryBudget >> 20) + " MiB map budget");
+}
+
+std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS) {
+  // Hexadecimal floats: exact, so any change of any input changes the key.
+  std::ostringstream k;
+  k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
+  const SssSettings& s = settings.sss;
+  k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
+    << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ',' << s.projectedArea << ',' << s.texelPlane << ';';
+  for (const glm::vec3& d : scene.mapDirections) k << d.x << ',' << d.y << ',' << d.z << ';';
+  for (const Light& l : scene.lights)
+    k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
+      << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
+      << ',' << l.intensity.z << ';';
+  for (const SceneObject& o : scene.objects) {
+    const Transform& t = o.transform;
+    k << o.translucent << ',' << t.position.x << ',' << t.position.y << ',' << t.position.z << ',' << t.rotationDeg.x
+      << ',' << t.rotationDeg.y << ',' << t.rotationDeg.z << ',' << t.scale << ',' << o.size.x << ',' << o.size.y
+      << ',' << o.size.z << ',';
+    const Material& m = o.material;
+    for (int c = 0; c < 3; ++c) k << m.sigma_a[c] << ',' << m.sigma_s[c] << ',' << m.g[c] << ',';
+    k << m.eta << ';';
+  }
+  return k.str();
+}
+
+bool RadiosityMaps::needsUpdate(const std::string& stateKey, const RenderSettings& settings) const {
+  return stateKey != key_ || frames_ < settings.sss.frames;
+}
+
+void RadiosityMaps::ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount) {
+  const int lightSize = lightMapSize_;
+  if (dirCount > 0 && (!dirPosition_.id() || dirPosition_.width() != lightSize || dirPosition_.depth() != dirCount)) {
+    dirPosition_ = colourArray(GL_RGBA32F, lightSize, dirCount);
+    dirNormal_ = colourArray(GL_RGBA32F, lightSize, dirCount);
+    dirDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, lightSize, lightSize, dirCount);
+  }
+  if (pointCount > 0 &&
+      (!pointPosition_.id() || pointPosition_.width() != lightSize || pointPosition_.depth() != 6 * pointCount)) {
+    pointPosition_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
+    pointNormal_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
+    pointDepth_ = gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, lightSize, pointCount);
+  }
+  const int size = settings.sss.mapSize;
+  if (k > 0 && (!maps_.id() || maps_.width() != size || maps_.depth() != k)) {
+    maps_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
+    mapDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, k);
+    mapDepth_.setFilter(GL_LINEAR, GL_LINEAR);  // bilinear comparison taps in Algorithm 1
+    mapDepth_.setWrap(GL_CLAMP_TO_BORDER);
+    mapDepth_.setBorderColor(0, 0, 0, 0);  // outside a map: not seen by it
+    mapDepth_.setDepthCompare(true);
+  }
+}
+
+void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings& settings,
+                                        const SceneGeometry& geometry, const std::string& stateKey) {
+  if (stateKey != key_) {  // restart the accumulation
+    key_ = stateKey;
+    frames_ = 0;
+  }
+  slots_.assign(scene.objects.size(), -1);
+  int slot = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].translucent) slots_[i] = slot++;
+  sphere_ = translucentBounds(scene, geometry);
+  GLint maxTexture = 0, maxCube = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  lightMapSize_ = effectiveLightMapSize(scene, settings, sphere_.radius, std::min(maxTexture, maxCube));
+
+  std::vector<int> dirLights, pointLights;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    (scene.lights[i].kind == LightKind::Directional ? dirLights : pointLights).push_back(static_cast<int>(i));
+  ensureTargets(settings, applies(scene, settings) ? mapCount(scene, settings) : 0, static_cast<int>(dirLights.size()),
+                static_cast<int>(pointLights.size()));
+  if (frames_ > 0) return;  // light and geometry unchanged: the G-buffers of the first frame hold
+
+  // Layer matrices: directional views fitted to the translucent objects (depth over the whole
+  // scene, so occluders between the light and the object are in front), then point-light cubes.
+  const int size = lightMapSize_;
+  geometry::Aabb translucentBox;
+  translucentBox.extend(sphere_.centre - glm::vec3(sphere_.radius));
+  translucentBox.extend(sphere_.centre + glm::vec3(sphere_.radius));
+  dirMatrices_.clear();
+  dirTangent_.clear();
+  dirBitangent_.clear();
+  std::vector<glm::mat4> dirLayers, pointLayers;
+  for (int i : dirLights) {
+    const glm::vec3 w = glm::normalize(scene.lights[static_cast<std::size_t>(i)].direction);
+    float texel = 0.0f;
+    const glm::mat4 vp = directionalShadowViewProjection(w, translucentBox, geometry.worldBounds(), size, texel);
+    dirLayers.push_back(vp);
+    dirMatrices_.push_back(kToTexture * vp);
+    glm::vec3 t1, t2;
+    planeBasis(w, t1, t2);
+    dirTangent_.push_back(t1);
+    dirBitangent_.push_back(t2);
+  }
+  const geometry::Aabb world = geometry.worldBounds();
+  for (int i : pointLights) {
+    const glm::vec3 p = scene.lights[static_cast<std::size_t>(i)].position;
+    float range = 1e-3f;
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 corner((c & 1) ? world.max.x : world.min.x, (c & 2) ? world.max.y : world.min.y,
+                             (c & 4) ? world.max.z : world.min.z);
+      range = std::max(range, glm::length(corner - p) * 1.01f);
+    }
+    for (const glm::mat4& face : cubeFaceViewProjections(p, range * 1e-4f, range)) pointLayers.push_back(face);
+  }
+
+  LayeredState state;
+  gbufferProgram_.use();
+  glViewport(0, 0, size, size);
+  const float clearPosition[4] = {0, 0, 0, 0};  // tag 0: nothing
+  const float one = 1.0f;
+  const auto drawAll = [&](const std::vector<glm::mat4>& layers) {
+    gbufferViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, gbufferViews_.id());
+    gbufferProgram_.set("uLayerBase", 0);
+    for (const DrawItem& item : geometry.items()) {
+      const int s = slots_[static_cast<std::size_t>(item.objectIndex)];
+      gbufferProgram_.set("uModel", item.model);
+      gbufferProgram_.set("uNormalMatrix", item.normalMatrix);
+      gbufferProgram_.set("uObjectTag", s + 1);
+      item.draw(static_cast<int>(layers.size()));
+    }
+  };
+  const auto renderKind = [&](const gpu::Texture& position, const gpu::Texture& normal, const gpu::Texture& depth,
+                              const std::vector<glm::mat4>& layers, const char* what) {
+    if (layers.empty()) return;
+    gpu::Framebuffer fb;
+    fb.attachColor(0, position);
+    fb.attachColor(1, normal);
+    fb.attachDepth(depth);
+    fb.setDrawBuffers(2);
+    fb.checkComplete(what);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, clearPosition);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, clearPosition);
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+    fb.bind();
+    drawAll(layers);
+  };
+  renderKind(dirPosition_, dirNormal_, dirDepth_, dirLayers, "directional light G-buffer");
+  renderKind(pointPosition_, pointNormal_, pointDepth_, pointLayers, "point light G-buffer");
+}
+
+void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene, GLuint firstUnit) const {
+  const GLuint kDirPositionUnit = firstUnit, kDirNormalUnit = firstUnit + 1, kPointPositionUnit = firstUnit + 2,
+               kPointNormalUnit = firstUnit + 3;
+  std::vector<glm::vec3> dirDirection, dirIrradiance, pointPosition, pointIntensity;
+  for (const Light& l : scene.lights) {
+    if (l.kind == LightKind::Directional) {
+      dirDirection.push_back(glm::normalize(l.direction));
+      dirIrradiance.push_back(l.intensity);
+    } else {
+      pointPosition.push_back(l.position);
+      pointIntensity.push_back(l.intensity);
+    }
+  }
+  const int nd = static_cast<int>(dirDirection.size()), np = static_cast<int>(pointPosition.size());
+  p.set("uSssDirCount", nd);
+  p.set("uSssPointCount", np);
+  if (nd > 0) {
+    p.set("uSssDirDirection", dirDirection.data(), nd);
+    p.set("uSssDirIrradiance", dirIrradiance.data(), nd);
+    p.set("uSssDirMatrix", dirMatrices_.data(), nd);
+    p.set("uSssDirTangent", dirTangent_.data(), nd);
+    p.set("uSssDirBitangent", dirBitangent_.data(), nd);
+  }
+  if (np > 0) {
+    p.set("uSssPointPosition", pointPosition.data(), np);
+    p.set("uSssPointIntensity", pointIntensity.data(), np);
+  }
+  p.set("uSssDirPosition", static_cast<int>(kDirPositionUnit));
+  p.set("uSssDirNormal", static_cast<int>(kDirNormalUnit));
+  p.set("uSssPointGPosition", static_cast<int>(kPointPositionUnit));
+  p.set("uSssPointGNormal", static_cast<int>(kPointNormalUnit));
+  (nd > 0 ? dirPosition_ : dummyDir_).bind(kDirPositionUnit);
+  (nd > 0 ? dirNormal_ : dummyDir_).bind(kDirNormalUnit);
+  (np > 0 ? pointPosition_ : dummyPoint_).bind(kPointPositionUnit);
+  (np > 0 ? pointNormal_ : dummyPoint_).bind(kPointNormalUnit);
+}
+
+void setSlotMaterialUniforms(gpu::Program& p, const Scene& scene, const std::vector<int>& slots) {
+  // Unused slots get a harmless medium (σ_s = 1, η = 1) so that no shader divides by zero.
+  std::vector<glm::vec3> sigmaA(kMaxTranslucentObjects, glm::vec3(0.0f)), sigmaS(kMaxTranslucentObjects, glm::vec3(1.0f)),
+      g(kMaxTranslucentObjects, glm::vec3(0.0f));
+  std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
+  for (std::size_t i = 0; i < scene.objects.size() && i < slots.size(); ++i) {
+    const int slot = slots[i];
+    if (slot < 0) continue;
+    const Material& m = scene.objects[i].material;
+    sigmaA[static_cast<std::size_t>(slot)] = m.sigma_a;
+    sigmaS[static_cast<std::size_t>(slot)] = m.sigma_s;
+    g[static_cast<std::size_t>(slot)] = m.g;
+    eta[static_cast<std::size_t>(slot)] = m.eta;
+  }
+  p.set("uSigmaA", sigmaA.data(), kMaxTranslucentObjects);
+  p.set("uSigmaS", sigmaS.data(), kMaxTranslucentObjects);
+  p.set("uG", g.data(), kMaxTranslucentObjects);
+  glProgramUniform1fv(p.id(), p.location("uEta"), kMaxTranslucentObjects, eta.data());
+}
+
+void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const RenderSettings& settings,
+                                      GLuint firstUnit, int frame) const {
+  const SssSettings& s = settings.sss;
+  setLightUniforms(p, scene, firstUnit);
+  setSlotMaterialUniforms(p, scene, slots_);
+  p.set("uBssrdfModel", static_cast<int>(s.model));
+  p.set("uSamples", s.samples);
+  p.set("uFrame", frame);
+  p.set("uStereographic", s.stereographic ? 1 : 0);
+  p.set("uProjectedArea", s.projectedArea ? 1 : 0);
+  p.set("uTexelPlane", s.texelPlane ? 1 : 0);
+}
+
+void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings& settings, GLuint mapsUnit,
+                                          GLuint depthUnit) const {
+  constexpr GLuint kMapViewsBinding = 5;  // shaders/maps/algorithm1.glsl
+  // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
+  const float radius = sphere_.radius;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, cameraViews_.id());
+  p.set("uMapCount", static_cast<int>(views_.size()));
+  p.set("uEpsBias", settings.sss.bias * radius);
+  p.set("uEpsComb", settings.sss.comb * radius);
+  p.set("uViewWeight", settings.sss.viewWeight);
+  p.set("uMaps", static_cast<int>(mapsUnit));
+  p.set("uMapDepth", static_cast<int>(depthUnit));
+  maps_.bind(mapsUnit);
+  mapDepth_.bind(depthUnit);
+}
+
+void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+  const SssSettings& s = settings.sss;
+  const int k = mapCount(scene, settings), size = s.mapSize;
+  const bool compute = s.computeGather;
+  LayeredState state;
+  glViewport(0, 0, size, size);
+  const auto drawTranslucent = [&](gpu::Program& program) {
+    drawTranslucentLayered(program, geometry, slots_, mapLayerViews_, k);
+  };
+
+  if (frames_ == 0) {
+    views_ = scene.mapDirections.empty() ? radiosityMapViews(k, sphere_.centre, sphere_.radius)
+                                         : radiosityMapViews(scene.mapDirections, sphere_.centre, sphere_.radius);
+    std::vector<glm::mat4> layers;
+    // algorithm1.glsl's MapViewGpu; the orthographic depth spans 2·radius (radiosityMapViews).
+    struct CameraView {
+      glm::mat4 toTexture;
+      glm::vec4 direction, depthScale;
+    };
+    std::vector<CameraView> camera;
+    const glm::vec4 depthPerMetre(0.5f / std::max(sphere_.radius, 1e-9f));
+    for (const MapView& v : views_) {
+      layers.push_back(v.viewProjection);
+      camera.push_back({v.toTexture, glm::vec4(v.direction, 0.0f), depthPerMetre});
+    }
+    mapLayerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
+    cameraViews_ = gpu::Buffer(camera.size() * sizeof(CameraView), camera.data());
+    const float zero[4] = {0, 0, 0, 0};
+    const float one = 1.0f;
+    glClearTexImage(maps_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    gpu::Framebuffer fb;
+    if (compute) {
+      // The maps' G-buffer (x_o, n_o per texel) with depth: the compute gather's input and the
+      // visibility of Algorithm 1.
+      if (!mapPosition_.id() || mapPosition_.width() != size || mapPosition_.depth() != k) {
+        mapPosition_ = colourArray(GL_RGBA32F, size, k);
+        mapNormal_ = colourArray(GL_RGBA32F, size, k);
+      }
+      fb.attachColor(0, mapPosition_);
+      fb.attachColor(1, mapNormal_);
+      fb.attachDepth(mapDepth_);
+      fb.setDrawBuffers(2);
+      fb.checkComplete("scattered radiosity maps' G-buffer");
+      glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
+      glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
+      glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+      fb.bind();
+      mapGBufferProgram_.use();
+      drawTranslucent(mapGBufferProgram_);
+    } else {
+      // Depth pre-pass of the translucent objects into all K layers.
+      fb.attachDepth(mapDepth_);
+      fb.setDrawBuffers(0);
+      fb.checkComplete("scattered radiosity maps' depth");
+      glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+      fb.bind();
+      depthProgram_.use();
+      drawTranslucent(depthProgram_);
+    }
+  }
+
+  if (compute) {
+    gpu::Program& p = mapCompute_;
+    p.use();
+    setGatherUniforms(p, scene, settings, 0, frames_);
+    constexpr GLuint kMapPositionUnit = 4, kMapNormalUnit = 5;
+    p.set("uMapPosition", static_cast<int>(kMapPositionUnit));
+    p.set("uMapNormal", static_cast<int>(kMapNormalUnit));
+    mapPosition_.bind(kMapPositionUnit);
+    mapNormal_.bind(kMapNormalUnit);
+    glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    const auto groups = static_cast<GLuint>((size + 7) / 8);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  } else {
+    // Shading: the estimator once per visible texel, added to the frames before (Algorithm 1
+    // divides by F).
+    gpu::Framebuffer fb;
+    fb.attachColor(0, maps_);
+    fb.attachDepth(mapDepth_);
+    fb.setDrawBuffers(1);
+    fb.checkComplete("scattered radiosity maps");
+    fb.bind();
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    mapProgram_.use();
+    setGatherUniforms(mapProgram_, scene, settings, 0, frames_);
+    drawTranslucent(mapProgram_);
+  }
+  ++frames_;
+  glGenerateTextureMipmap(maps_.id());
+}
+
+std::size_t RadiosityMaps::bytes() const {
+  return dirPosition_.bytes() + dirNormal_.bytes() + dirDepth_.bytes() + pointPosition_.bytes() +
+         pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes() + mapPosition_.bytes() +
+         mapNormal_.bytes();
+}
+
+}  // namespace tallow::sss

@@ -1,0 +1,167 @@
+#pragma once
+// Directional subsurface scattering by scattered radiosity maps (Dal Corso, Frisvad, Mosegaard and
+// Bærentzen 2017, "the paper"), steps 1 and 2 of its Fig. 3, and what step 3 (Algorithm 1, in
+// shaders/surface.frag) needs to read them:
+//   1. light G-buffers: per directional light an orthographic view fitted to the translucent
+//      objects, per point light a cube; world position, normal and object tag per texel, all
+//      lights in one layered (instanced) pass;
+//   2. K scattered radiosity maps: orthographic views from Halton directions on the translucent
+//      objects' bounding sphere, one layered depth pre-pass, then the estimator of Eq. 9 per
+//      visible texel with depth writes off, accumulated by additive blending over F frames while
+//      light and geometry stay still (progressive), with mipmaps.
+// Opaque objects are drawn into the light G-buffers as occluders (tag 0) but get no maps.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu/gl_objects.h"
+#include "gpu/program.h"
+#include "gpu/shader_library.h"
+#include "sss/render_settings.h"
+#include "sss/scene.h"
+#include "sss/scene_geometry.h"
+
+namespace tallow::sss {
+
+/// At most this many translucent objects (material slots) and lights of each kind per scene.
+inline constexpr int kMaxTranslucentObjects = 8;
+inline constexpr int kMaxSssDirectionalLights = 32;
+inline constexpr int kMaxSssPointLights = 8;
+
+/// One map's camera: direction from the bounding sphere's centre toward the camera, and
+/// world → [0,1]³ (texture coordinates, depth).
+struct MapView {
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};
+  glm::mat4 viewProjection{1.0f};
+  glm::mat4 toTexture{1.0f};
+};
+
+/// The K map views around the sphere (centre, radius): Halton directions (radical inverses in
+/// bases 2 and 3 of k + 1, area-uniform on the sphere, as the paper's §3.2), orthographic, the
+/// frustum enclosing the sphere.
+std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius);
+/// The same for listed directions (unit, from the centre toward each camera).
+std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions, const glm::vec3& centre, float radius);
+/// K of a frame: the scene's listed map directions, else sss.maps.
+int mapCount(const Scene& scene, const RenderSettings& settings);
+
+/// Draws the translucent scene objects (slots[objectIndex] ≥ 0) with `program` — maps/layered.vert
+/// and maps/layered.geom, uniforms uModel, uNormalMatrix, uSlot — once into each of `instances`
+/// layers whose view-projections `layerViews` holds (std430 mat4 per layer, layered.geom's binding).
+void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry, const std::vector<int>& slots,
+                            const gpu::Buffer& layerViews, int instances);
+
+/// The per-slot material arrays of shaders/maps/gather.glsl (uSigmaA, uSigmaS, uG [mm⁻¹], uEta), from
+/// the materials of the scene objects by their translucent slot (slots[objectIndex], −1: opaque).
+void setSlotMaterialUniforms(gpu::Program& program, const Scene& scene, const std::vector<int>& slots);
+
+/// The translucent objects' bounding sphere in world units (centre, radius); radius 0 when none.
+struct BoundingSphere {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geometry);
+
+/// "Pearling" (the paper's §5): where the mean free path of the estimator's samples, 1/σ_tr, is
+/// shorter than a light G-buffer texel, most samples of a texel look up the same G-buffer entry and
+/// the result breaks into beads. One entry per translucent object and colour band where it happens.
+struct PearlingWarning {
+  std::string object;
+  int band = 0;
+  double meanFreePathMm = 0.0;  ///< 1/σ_tr of the band
+  double texelMm = 0.0;         ///< world size of one directional light G-buffer texel
+};
+std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRadius, int lightMapSize);
+/// The light G-buffer size the renderer uses: sss.light_map_size, or with sss.light_map_auto the
+/// smallest power of two at least that large whose texel is ≤ the shortest 1/σ_tr of the
+/// translucent objects, capped at `maxSize`.
+int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize);
+
+class RadiosityMaps {
+ public:
+  explicit RadiosityMaps(const gpu::ShaderLibrary& shaders);
+
+  /// True when the scene has translucent objects and `settings` selects the radiosity maps.
+  static bool applies(const Scene& scene, const RenderSettings& settings);
+  /// True when the frame needs the light G-buffers: radiosity maps or no-cache, with translucent objects.
+  static bool needsLightGBuffers(const Scene& scene, const RenderSettings& settings);
+  /// Throws std::invalid_argument naming the limit when K, the map sizes or the memory exceed
+  /// what this GPU holds (GL_MAX_ARRAY_TEXTURE_LAYERS, GL_MAX_TEXTURE_SIZE, a memory budget), or
+  /// when the scene has more translucent objects or lights than the passes hold.
+  static void checkLimits(const Scene& scene, const RenderSettings& settings);
+
+  /// Whether the maps must be (re)computed this frame: `stateKey` describes everything the maps
+  /// depend on (lights, geometry time, transforms, materials, sss settings); a new key restarts
+  /// the accumulation; the same key accumulates until sss.frames frames, then the maps are
+  /// converged and only the camera pass runs.
+  bool needsUpdate(const std::string& stateKey, const RenderSettings& settings) const;
+  /// Steps 1 and 2 for one frame (call only when needsUpdate): restarts on a new key, renders the
+  /// light G-buffers and adds one frame of N samples to every map.
+  void renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
+                           const std::string& stateKey);
+  void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
+
+  int frames() const { return frames_; }   ///< F, frames accumulated in the maps
+  int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
+  const std::vector<MapView>& views() const { return views_; }
+  /// The K views as shaders/maps/algorithm1.glsl's MapViewGpu array (std430: world → [0,1]³,
+  /// direction, depth units per metre), built once per accumulation with the views.
+  const gpu::Buffer& cameraViews() const { return cameraViews_; }
+  BoundingSphere sphere() const { return sphere_; }
+  /// The maps (RGBA32F 2D array with mipmaps: Σ of B_N over F frames) and their depth (2D array).
+  const gpu::Texture& maps() const { return maps_; }
+  const gpu::Texture& mapDepth() const { return mapDepth_; }
+  const gpu::Texture& directionalPositions() const { return dirPosition_; }
+  /// The point lights' G-buffers: one cube per point light (scene order of the point lights).
+  const gpu::Texture& pointPositions() const { return pointPosition_; }
+  const gpu::Texture& pointNormals() const { return pointNormal_; }
+  std::size_t bytes() const;
+  /// Everything gather.glsl reads (lights, G-buffers on texture units firstUnit … firstUnit + 3,
+  /// materials, model, N, the frame seed), for a program that includes it: the map passes, and
+  /// the camera pass of the no-cache method.
+  void setGatherUniforms(gpu::Program& program, const Scene& scene, const RenderSettings& settings, GLuint firstUnit,
+                         int frame) const;
+  /// Everything shaders/maps/algorithm1.glsl reads (the K views on its storage binding, K, F, ε_bias,
+  /// ε_comb, the view weight; the maps and their depth on texture units mapsUnit and depthUnit),
+  /// for a program that includes it: the camera pass and the VPL pass.
+  void setAlgorithm1Uniforms(gpu::Program& program, const RenderSettings& settings, GLuint mapsUnit,
+                             GLuint depthUnit) const;
+  /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
+  const std::vector<int>& slots() const { return slots_; }
+  /// The directional light G-buffers (tests): normals, and per directional light (scene order of
+  /// the directional lights) world → [0,1]³ and the sampling plane's basis.
+  const gpu::Texture& directionalNormals() const { return dirNormal_; }
+  const std::vector<glm::mat4>& directionalMatrices() const { return dirMatrices_; }
+  const std::vector<glm::vec3>& directionalTangents() const { return dirTangent_; }
+  const std::vector<glm::vec3>& directionalBitangents() const { return dirBitangent_; }
+
+  /// Everything a state key is built from; exposed for tests.
+  static std::string stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS);
+
+ private:
+  void ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount);
+  void setLightUniforms(gpu::Program& program, const Scene& scene, GLuint firstUnit) const;
+
+
+  gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_;
+  gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
+  gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
+  gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
+  gpu::Texture maps_, mapDepth_;
+  gpu::Texture mapPosition_, mapNormal_;  ///< the maps' G-buffer (compute gather only)
+  gpu::Buffer gbufferViews_;   ///< std430 mat4 per light G-buffer layer being drawn
+  gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered.geom)
+  gpu::Buffer cameraViews_;    ///< the maps as Algorithm 1 reads them (cameraViews())
+  std::vector<MapView> views_;
+  std::vector<glm::mat4> dirMatrices_;  ///< world → [0,1]³ of each directional light's G-buffer
+  std::vector<glm::vec3> dirTangent_, dirBitangent_;
+  std::vector<int> slots_;
+  BoundingSphere sphere_;
+  std::string key_;
+  int frames_ = 0;
+  int lightMapSize_ = 0;
+};
+
+}  // namespace tallow::sss
