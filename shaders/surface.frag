@@ -1,11 +1,13 @@
 #version 450 core
-// Opaque surfaces: Lambertian reflection of every light (with shadows), of the VPLs' emergent light
-// (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces with radiosity maps (uTranslucent):
-// L = F_t(ω_o)/π · B (Eq. 5, B from Algorithm 1; with uSslpv, B = π L_i of SSLPV's Eq. 7,
-// peers/sslpv/lookup.glsl) + F_r(ω_o) · L_env(mirror direction): the
-// specular reflection, Fresnel-weighted, of the environment map, or of the uniform ambient sky
-// when there is none (render.specular off: no reflection). With uImageSpace, B comes from the
-// image-space method's accumulation at this pixel (peers/image_space/result.glsl).
+// The camera pass. Opaque surfaces: Lambertian reflection of every light (with shadows), of the
+// VPLs' emergent light (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky,
+// L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces (uTranslucent):
+// L = F_t(ω_o)/π · B (Eq. 5) + F_r(ω_o) · L_env(mirror direction): the specular reflection,
+// Fresnel-weighted, of the environment map, or of the uniform ambient sky when there is none
+// (render.specular off: no reflection). The frame's method (sss/translucency_method.h,
+// uTranslucentMethod) gives B: Algorithm 1 over the radiosity maps, the gather per pixel (no-cache),
+// the image-space accumulation at this pixel (peers/image_space/result.glsl) or B = π L_i of
+// SSLPV's Eq. 7 (peers/sslpv/lookup.glsl).
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.glsl"
 #include "maps/algorithm1.glsl"
@@ -22,10 +24,11 @@ uniform vec3 uAmbient;
 uniform vec3 uCameraPosition;
 uniform int uCameraOrthographic;
 uniform vec3 uCameraForward;
-uniform int uTranslucent;  // 1: shaded from the scattered radiosity maps (or, with uNoCache, the gather)
-uniform int uNoCache;      // 1: the gather per pixel against the light G-buffers, no maps
-uniform int uSlot;         // the translucent slot of this object (no-cache)
-uniform int uImageSpace;   // 1: B from the image-space method (peers/image_space/result.glsl)
+uniform int uTranslucent;  // 1: this object is shaded by the frame's method
+// The frame's method, sss::SurfaceShading: 1 Algorithm 1, 2 the gather (no-cache), 3 image-space,
+// 4 SSLPV.
+uniform int uTranslucentMethod;
+uniform int uSlot;         // the translucent slot of this object (the gather)
 uniform int uSpecular;     // render.specular
 uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
 uniform sampler2D uEnvMap; // lat-long radiance (sss/maps/environment_lights.h conventions)
@@ -57,11 +60,11 @@ void main() {
   bool backFacing = dot(n, toCamera) < 0.0;
   if (uTranslucent != 0) {
     float seenBy = 1.0;
-    vec3 b = uImageSpace != 0 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
-             : uNoCache != 0
+    vec3 b = uTranslucentMethod == 3 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
+             : uTranslucentMethod == 2
                  ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
-             : uSslpv != 0 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
-                           : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
+             : uTranslucentMethod == 4 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
+                                       : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
     vec3 v = normalize(toCamera);
     vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
 #include "sss/view_setup.h"
 
 namespace tallow::sss {

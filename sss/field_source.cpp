@@ -101,7 +101,9 @@ FieldSource::~FieldSource() = default;
 FieldSource::FieldSource(FieldSource&&) noexcept = default;
 FieldSource& FieldSource::operator=(FieldSource&&) noexcept = default;
 
-bool FieldSource::animated() const { return parts_->desc.kind != FieldKind::Mesh || parts_->melts(); }
+bool fieldAnimated(const FieldDesc& desc) { return desc.kind != FieldKind::Mesh || desc.meltDurationS > 0.0; }
+
+bool FieldSource::animated() const { return fieldAnimated(parts_->desc); }
 
 geometry::Aabb FieldSource::bounds() const { return parts_->bounds; }
 

@@ -17,6 +17,9 @@ namespace tallow::sss {
 /// The candle of a FieldKind::Candle description (what FieldSource builds it with).
 geometry::CandleParams candleParams(const FieldDesc& desc);
 
+/// True when a field of this description changes with t (blob, candle, a mesh field that melts).
+bool fieldAnimated(const FieldDesc& desc);
+
 /// The scene at time t: every light that follows a candle's flame (Light::follow) moved to
 /// CandleField(t).flamePosition() under its object's transform; otherwise `scene` unchanged.
 Scene sceneAtTime(const Scene& scene, double timeS);

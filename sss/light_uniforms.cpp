@@ -11,19 +11,21 @@ void setLightUniforms(gpu::Program& p, const Scene& scene, const RenderSettings&
   std::vector<glm::mat4> dirMatrix;
   std::vector<float> dirTexel, pointRange;
   const ShadowLayers& layers = shadows.layers();
+  // The shadow maps are kept between frames; a light's layer counts only while it casts shadows now.
+  const auto castsShadow = [&](const Light& l) { return settings.shadows && l.castsShadows; };
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     if (l.kind == LightKind::Directional) {
       dirDirection.push_back(glm::normalize(l.direction));
       dirIrradiance.push_back(l.intensity);
-      const bool shadowed = i < layers.directionalLayer.size() && layers.directionalLayer[i] >= 0;
+      const bool shadowed = castsShadow(l) && i < layers.directionalLayer.size() && layers.directionalLayer[i] >= 0;
       dirLayer.push_back(shadowed ? layers.directionalLayer[i] : -1);
       dirMatrix.push_back(shadowed ? layers.directionalMatrix[i] : glm::mat4(1.0f));
       dirTexel.push_back(shadowed ? layers.directionalTexel[i] : 0.0f);
     } else {
       pointPosition.push_back(l.position);
       pointIntensity.push_back(l.intensity);
-      const bool shadowed = i < layers.pointCube.size() && layers.pointCube[i] >= 0;
+      const bool shadowed = castsShadow(l) && i < layers.pointCube.size() && layers.pointCube[i] >= 0;
       pointLayer.push_back(shadowed ? layers.pointCube[i] : -1);
       pointRange.push_back(shadowed ? layers.pointRange[i] : 1.0f);
     }

@@ -4,7 +4,14 @@
 #include <stdexcept>
 
 #include "gpu/readback.h"
+#include "sss/field_objects.h"
 #include "sss/field_source.h"
+#include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
+#include "sss/peers/image_space.h"
+#include "sss/peers/sslpv.h"
+#include "sss/shadow_pass.h"
+#include "sss/surface_pass.h"
 
 namespace tallow::sss {
 
@@ -31,247 +38,127 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
                                 std::to_string(std::min(maxTexture, maxViewport[0])) + " pixels per side");
   if (6 * pointCount > maxLayers)
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
-  RadiosityMaps::checkLimits(scene, settings);
-  VirtualPointLights::checkLimits(scene, settings);
-  ImageSpaceSss::checkLimits(scene, settings);
-  Sslpv::checkLimits(scene, settings);
+  // Every method's limits, whichever is selected: a preset is refused the same way for all of them.
+  const FrameState state{scene, settings, 0.0, 0};
+  for (const auto& method : makeTranslucencyMethods()) method->checkLimits(state);
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
-    : geometry_(scene), fields_(std::make_unique<FieldObjects>(shaders, scene)), shaders_(shaders), shadows_(shaders),
-      surface_(shaders), display_(shaders) {
+    : shaders_(shaders), geometry_(scene), display_(shaders) {
+  modules_.obtain<FieldObjects>(shaders, scene);
+  modules_.obtain<ShadowPass>(shaders);
+  SurfacePass& surface = modules_.obtain<SurfacePass>(shaders);
   checkLimits(scene, settings);
-  ensureTargets(settings.width, settings.height);
-  if (scene.environment) surface_.setEnvironment(*scene.environment);
+  target_.ensure(settings.width, settings.height);
+  if (scene.environment) surface.setEnvironment(*scene.environment);
 }
+
+Renderer::~Renderer() = default;
 
 std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings& settings) {
-  std::vector<PlannedPass> passes;
-  if (FieldObjects::any(scene)) {
-    int n = 0;
-    for (const SceneObject& o : scene.objects) n += o.shape == ShapeKind::Field ? 1 : 0;
-    passes.push_back({"field.sample", std::to_string(n) + " field object(s) at a new time: sampled on the CPU on a " +
-                                          std::to_string(settings.fieldRes) + "^3 lattice and uploaded"});
-    passes.push_back({"field.extract", "GPU dual contouring (surface nets) of the uploaded lattice(s) into "
-                                       "transform-feedback buffers"});
-  }
-  int dirShadowed = 0, pointShadowed = 0;
-  for (const Light& l : scene.lights)
-    if (l.castsShadows) (l.kind == LightKind::Directional ? dirShadowed : pointShadowed)++;
-  if (ShadowPass::needsDirectional(scene, settings))
-    passes.push_back({"shadow.directional", std::to_string(dirShadowed) +
-                                                " directional light(s) cast shadows: one orthographic depth layer each"});
-  if (ShadowPass::needsPoint(scene, settings))
-    passes.push_back({"shadow.point", std::to_string(pointShadowed) +
-                                          " point light(s) cast shadows: one depth cube each (6 faces)"});
-  const bool maps = RadiosityMaps::applies(scene, settings);
-  const bool noCache = settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings);
-  if (maps || noCache) {
-    int dir = 0, point = 0;
-    for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dir : point)++;
-    const SssSettings& s = settings.sss;
-    passes.push_back({"sss.light_gbuffer", std::to_string(dir) + " directional (orthographic layer) and " +
-                                               std::to_string(point) + " point (cube) light G-buffer(s), " +
-                                               std::to_string(s.lightMapSize) + "^2, one layered pass each kind"});
-    if (maps)
-      passes.push_back({"sss.maps", std::to_string(mapCount(scene, settings)) +
-                                      (scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") +
-                                      " scattered radiosity maps of " + std::to_string(s.mapSize) +
-                                      "^2: depth pre-pass, then " + std::to_string(s.samples) +
-                                      " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
-                                      " dipole), accumulated until " + std::to_string(s.frames) + " frames"});
-  }
-  const bool imageSpace = ImageSpaceSss::applies(scene, settings);
-  if (imageSpace)
-    for (const char* name : {"image_space.gbuffer", "image_space.scatter", "image_space.combine"})
-      passes.push_back({name, ImageSpaceSss::describe(scene, settings, name)});
-  const bool sslpv = Sslpv::applies(scene, settings);
-  if (sslpv) {
-    passes.push_back({"sslpv.voxelize", Sslpv::describeVoxelize(scene, settings)});
-    passes.push_back({"sslpv.light_gbuffer", Sslpv::describeLightGBuffer(scene, settings)});
-    passes.push_back({"sslpv.inject", Sslpv::describeInject(settings)});
-    passes.push_back({"sslpv.propagate", Sslpv::describePropagate(settings)});
-  }
-  if (VirtualPointLights::applies(scene, settings))
-    passes.push_back({"vpl", VirtualPointLights::describe(scene, settings)});
-  passes.push_back({"surface", std::to_string(scene.objects.size()) + " object(s): " +
-                                   (sslpv ? "translucent ones from the SSLPV accumulation grid (area light of Eqs. 5-7 "
-                                            "after the SH rotation of Eq. 6), opaque ones Lambertian"
-                                    : maps ? "translucent ones from the radiosity maps (Algorithm 1, Eq. 5), opaque "
-                                                "ones Lambertian"
-                                    : imageSpace ? "translucent ones from the image-space estimate at their pixel (L = F_t/pi "
-                                                   "B, standard dipole), opaque ones Lambertian"
-                                    : noCache ? "translucent ones by the gather per pixel against the light G-buffers "
-                                                "(no-cache: " + std::to_string(settings.sss.samples) +
-                                                    " samples per pixel and band, a new estimate every frame), opaque "
-                                                    "ones Lambertian"
-                                              : "Lambertian with direct light, shadows and ambient (method albedo: "
-                                                "translucent objects use their albedo)") +
-                                   " with direct light, shadows and ambient"});
-  return passes;
+  FramePlan plan;
+  return plan.describe(FrameState{scene, settings, 0.0, 0});
 }
 
-std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSettings& settings,
+Renderer::Due Renderer::due(const Pass& pass, const FrameState& state, const PassIo& io,
+                            const std::map<std::string, Stamp>& resources) const {
+  const auto record = records_.find(&pass);
+  if (forget_ || record == records_.end()) return Due::Changed;
+  Fingerprint inputs;
+  bool newData = false;
+  for (const std::string& name : io.reads) {
+    if (isInput(name)) {
+      inputs << inputFingerprint(name, state);
+      continue;
+    }
+    const auto now = resources.find(name);
+    const Stamp stamp = now == resources.end() ? Stamp{} : now->second;
+    const auto then = record->second.seen.find(name);
+    const Stamp seen = then == record->second.seen.end() ? Stamp{} : then->second;
+    if (stamp.epoch != seen.epoch) return Due::Changed;
+    newData |= stamp.version != seen.version;
+  }
+  if (inputs.value() != record->second.inputs) return Due::Changed;
+  return newData || pass.runsAgain(state) ? Due::Again : Due::No;
+}
+
+std::vector<std::pair<Pass*, Renderer::Due>> Renderer::schedule(const FrameState& state,
+                                                                std::map<std::string, Stamp>& resources) const {
+  std::vector<std::pair<Pass*, Due>> out;
+  for (Pass* pass : plan_.passes(state)) {
+    const PassIo io = pass->io(state);
+    const Due d = due(*pass, state, io, resources);
+    if (d == Due::No) continue;
+    out.emplace_back(pass, d);
+    for (const std::string& w : io.writes) {
+      Stamp& s = resources[w];
+      ++s.version;
+      if (d == Due::Changed) ++s.epoch;
+    }
+  }
+  return out;
+}
+
+std::vector<PlannedPass> Renderer::planFrame(const Scene& sceneAsLoaded, const RenderSettings& settings,
                                              double timeS) const {
-  return planFrame(scene, settings, timeS, mapKey(scene, settings, timeS));
-}
-
-std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
-                                             const std::string& mapStateKey) const {
-  std::vector<PlannedPass> passes = plan(scene, settings);
-  if (!fields_->stale(timeS, settings.fieldRes))
-    std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("field.", 0) == 0; });
-  // Converged: nothing the maps depend on changed and F reached sss.frames; only step 3 runs.
-  if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapStateKey, settings))
-    std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sss.", 0) == 0; });
-  // The image-space accumulation: its G-buffer once per accumulation, nothing once it is complete.
-  if (imageSpace_ && ImageSpaceSss::applies(scene, settings)) {
-    const std::string imageSpaceKey = ImageSpaceSss::stateKey(mapStateKey, scene, settings);
-    if (!imageSpace_->needsUpdate(imageSpaceKey, settings))
-      std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("image_space.", 0) == 0; });
-    else if (!imageSpace_->needsGBuffer(imageSpaceKey))
-      std::erase_if(passes, [](const PlannedPass& p) { return p.name == "image_space.gbuffer"; });
-  }
-  // The VPLs read the maps and the geometry: nothing to redo while both hold, unless the directions
-  // change every frame.
-  if (vpls_ && vpls_->count() == settings.vpl.count && settings.vpl.stable && fields_ &&
-      !fields_->stale(timeS, settings.fieldRes) && maps_ && !maps_->needsUpdate(mapStateKey, settings) &&
-      vplKey_ == vplKey(settings, mapStateKey))
-    std::erase_if(passes, [](const PlannedPass& p) { return p.name == "vpl"; });
-  // SSLPV is deterministic: while its inputs hold, its grids are what a recomputation would give.
-  if (sslpv_ && Sslpv::applies(scene, settings)) {
-    const std::string medium = sslpvMediumKey(scene, settings, timeS);
-    const bool mediumStale = sslpv_->mediumStale(medium);
-    if (!mediumStale) std::erase_if(passes, [](const PlannedPass& p) { return p.name == "sslpv.voxelize"; });
-    if (!mediumStale && !sslpv_->lightStale(Sslpv::lightKey(scene, settings, medium)))
-      std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("sslpv.", 0) == 0; });
-  }
-  return passes;
-}
-
-std::string Renderer::sslpvMediumKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
-  return Sslpv::mediumKey(scene, settings, fields_->animated() ? timeS : 0.0) + "|restart " +
-         std::to_string(accumulation_);
-}
-
-std::string Renderer::mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const {
-  return RadiosityMaps::stateKey(scene, settings, fields_->animated() ? timeS : 0.0) + "|restart " +
-         std::to_string(accumulation_);
-}
-
-std::string Renderer::vplKey(const RenderSettings& settings, const std::string& mapStateKey) {
-  const VplSettings& v = settings.vpl;
-  return mapStateKey + "|vpl " + std::to_string(v.count) + ',' + std::to_string(v.cubeSize) + ',' +
-         std::to_string(static_cast<int>(v.placement)) + ',' + std::to_string(static_cast<int>(v.area)) + ',' +
-         std::to_string(v.stable) + ',' + std::to_string(v.shadows) + ',' + std::to_string(v.shadowClusters) + ',' +
-         std::to_string(v.shadowSize);
-}
-
-void Renderer::restartAccumulation() {
-  ++accumulation_;
-  noCacheFrame_ = 0;
-}
-
-void Renderer::ensureTargets(int width, int height) {
-  if (radiance_.id() && radiance_.width() == width && radiance_.height() == height) return;
-  radiance_ = gpu::Texture::create2D(GL_RGBA32F, width, height);
-  radiance_.setFilter(GL_NEAREST, GL_NEAREST);
-  depth_ = gpu::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
-  coverage_ = gpu::Texture::create2D(GL_RGBA8, width, height);
-  coverage_.setFilter(GL_NEAREST, GL_NEAREST);
-  target_ = gpu::Framebuffer();
-  target_.attachColor(0, radiance_);
-  target_.attachColor(1, coverage_);
-  target_.attachDepth(depth_);
-  target_.setDrawBuffers(2);
-  target_.checkComplete("camera target");
+  const Scene scene = sceneAtTime(sceneAsLoaded, timeS);
+  const FrameState state{scene, settings, timeS, accumulation_};
+  std::map<std::string, Stamp> resources = resources_;
+  std::vector<PlannedPass> out;
+  for (const auto& [pass, d] : schedule(state, resources))
+    out.push_back({pass->name(), pass->reason(state), pass->io(state)});
+  return out;
 }
 
 FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& settings, double timeS) {
   // Lights that follow a candle's flame move with t; everything else is the scene as loaded.
-  const bool follows = std::any_of(sceneAsLoaded.lights.begin(), sceneAsLoaded.lights.end(),
-                                   [](const Light& l) { return l.follow >= 0; });
-  const Scene timed = follows ? sceneAtTime(sceneAsLoaded, timeS) : Scene{};
-  const Scene& scene = follows ? timed : sceneAsLoaded;
+  const Scene scene = sceneAtTime(sceneAsLoaded, timeS);
   checkLimits(scene, settings);
-  ensureTargets(settings.width, settings.height);
+  target_.ensure(settings.width, settings.height);
   geometry_.update(scene);
   timer_.beginFrame();
-  shadows_.reset(scene.lights.size());
-  const std::string key = mapKey(scene, settings, timeS);  // once: the plan and the G-buffer pass share it
-  const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-  for (const PlannedPass& pass : planFrame(scene, settings, timeS, key)) {
-    gpu::GpuScope scope(timer_, pass.name);
-    if (pass.name == "field.sample") {
-      fields_->sample(timeS, settings.fieldRes, geometry_);
-      geometry_.update(scene);
-    } else if (pass.name == "field.extract") {
-      fields_->extract();
-    } else if (pass.name == "shadow.directional") {
-      shadows_.renderDirectional(scene, settings, geometry_);
-    } else if (pass.name == "shadow.point") {
-      shadows_.renderPoint(scene, settings, geometry_);
-    } else if (pass.name == "sss.light_gbuffer") {
-      if (!maps_) maps_ = std::make_unique<RadiosityMaps>(shaders_);
-      maps_->renderLightGBuffers(scene, settings, geometry_, key);
-    } else if (pass.name == "sss.maps") {
-      maps_->renderMaps(scene, settings, geometry_);
-    } else if (pass.name == "sslpv.voxelize") {
-      if (!sslpv_) sslpv_ = std::make_unique<Sslpv>(shaders_);
-      sslpv_->voxelize(scene, settings, geometry_, sslpvMediumKey(scene, settings, timeS));
-    } else if (pass.name == "sslpv.light_gbuffer") {
-      sslpv_->renderLightGBuffers(scene, settings, geometry_,
-                                  Sslpv::lightKey(scene, settings, sslpvMediumKey(scene, settings, timeS)));
-    } else if (pass.name == "sslpv.inject") {
-      sslpv_->inject(scene, settings);
-    } else if (pass.name == "sslpv.propagate") {
-      sslpv_->propagate(settings);
-    } else if (pass.name == "vpl") {
-      if (!vpls_) vpls_ = std::make_unique<VirtualPointLights>(shaders_);
-      vpls_->render(scene, settings, geometry_, *maps_, vplFrame_++);
-      vplKey_ = vplKey(settings, key);
-    } else if (pass.name == "image_space.gbuffer") {
-      if (!imageSpace_) imageSpace_ = std::make_unique<ImageSpaceSss>(shaders_);
-      imageSpace_->renderGBuffer(scene, settings, geometry_, cameraView(scene.camera, aspect, geometry_.worldBounds()),
-                                 shadows_, ImageSpaceSss::stateKey(key, scene, settings));
-    } else if (pass.name == "image_space.scatter") {
-      imageSpace_->scatter(scene, settings, cameraView(scene.camera, aspect, geometry_.worldBounds()));
-    } else if (pass.name == "image_space.combine") {
-      imageSpace_->combine(settings);
-    } else if (pass.name == "surface") {
-      const glm::vec4 clear(scene.background, 1.0f);
-      glClearNamedFramebufferfv(target_.id(), GL_COLOR, 0, &clear.x);
-      const glm::vec4 none(0.0f);
-      glClearNamedFramebufferfv(target_.id(), GL_COLOR, 1, &none.x);
-      const float one = 1.0f;
-      glClearNamedFramebufferfv(target_.id(), GL_DEPTH, 0, &one);
-      const CameraView camera = cameraView(scene.camera, aspect, geometry_.worldBounds());
-      // The frame's method: which pass's output shades the translucent objects.
-      TranslucentSource source;
-      if (maps_ && RadiosityMaps::applies(scene, settings)) source.maps = maps_.get();
-      if (maps_ && settings.sss.method == SssMethod::NoCache && RadiosityMaps::needsLightGBuffers(scene, settings))
-        source.noCache = maps_.get();
-      if (imageSpace_ && ImageSpaceSss::applies(scene, settings)) source.imageSpace = imageSpace_.get();
-      if (sslpv_ && Sslpv::applies(scene, settings)) source.sslpv = sslpv_.get();
-      const VirtualPointLights* vpls = vpls_ && VirtualPointLights::applies(scene, settings) ? vpls_.get() : nullptr;
-      surface_.render(scene, settings, geometry_, camera, shadows_, source, vpls, noCacheFrame_++, target_,
-                      settings.width, settings.height);
+  const FrameState state{scene, settings, timeS, accumulation_};
+  FrameContext context{state, shaders_, geometry_, modules_, target_, plan_.method(state), plan_.methods()};
+  std::map<std::string, Stamp> before = resources_;
+  for (const auto& [pass, d] : schedule(state, resources_)) {
+    {
+      gpu::GpuScope scope(timer_, pass->name());
+      pass->run(context, d == Due::Changed);
     }
+    // What it read, as it was when it ran: the stamps of this frame's writers before it (the
+    // schedule already counted this frame's writes; a pass reads only what runs before it).
+    const PassIo io = pass->io(state);
+    PassRecord& record = records_[pass];
+    Fingerprint inputs;
+    record.seen.clear();
+    for (const std::string& name : io.reads) {
+      if (isInput(name)) inputs << inputFingerprint(name, state);
+      else record.seen[name] = before.count(name) ? before[name] : Stamp{};
+    }
+    record.inputs = inputs.value();
+    for (const std::string& w : io.writes) before[w] = resources_[w];
   }
+  forget_ = false;
   FrameTimings t;
   t.passes = timer_.collect();
   for (const auto& p : t.passes) t.gpuTotalMs += p.gpuMs;
   return t;
 }
 
+void Renderer::restartAccumulation() { ++accumulation_; }
+
+void Renderer::invalidate() { forget_ = true; }
+
 void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap) {
-  display_.render(radiance_, target, width, height, toneMap);
+  display_.render(target_.radiance, target, width, height, toneMap);
 }
 
-gpu::Image Renderer::readRadiance() const { return gpu::readColor(target_, 0, radiance_.width(), radiance_.height()); }
+gpu::Image Renderer::readRadiance() const {
+  return gpu::readColor(target_.framebuffer, 0, target_.radiance.width(), target_.radiance.height());
+}
 
 MapCoverage Renderer::mapCoverage() const {
-  const gpu::Image c = gpu::readColor(target_, 1, coverage_.width(), coverage_.height());
+  const gpu::Image c = gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
   MapCoverage m;
   for (const glm::vec4& p : c.pixels) {
     if (p.r < 0.5f) continue;
@@ -282,16 +169,21 @@ MapCoverage Renderer::mapCoverage() const {
 }
 
 std::vector<std::uint8_t> Renderer::receiverMask() const {
-  const gpu::Image c = gpu::readColor(target_, 1, coverage_.width(), coverage_.height());
+  const gpu::Image c = gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
   std::vector<std::uint8_t> mask(c.pixels.size());
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].b > 0.5f ? 1 : 0;
   return mask;
 }
 
-std::size_t Renderer::gpuBytes() const {
-  return radiance_.bytes() + coverage_.bytes() + depth_.bytes() + shadows_.bytes() + geometry_.bytes() + fields_->bytes() +
-         (maps_ ? maps_->bytes() : 0) + (vpls_ ? vpls_->bytes() : 0) + (imageSpace_ ? imageSpace_->bytes() : 0) +
-         (sslpv_ ? sslpv_->bytes() : 0);
+std::size_t Renderer::triangleCount() const {
+  return geometry_.triangleCount() + modules_.find<FieldObjects>()->triangleCount();
 }
+
+std::size_t Renderer::gpuBytes() const { return target_.bytes() + geometry_.bytes() + modules_.bytes(); }
+
+const RadiosityMaps* Renderer::radiosityMaps() const { return modules_.find<RadiosityMaps>(); }
+const ImageSpaceSss* Renderer::imageSpace() const { return modules_.find<ImageSpaceSss>(); }
+const VirtualPointLights* Renderer::virtualPointLights() const { return modules_.find<VirtualPointLights>(); }
+const Sslpv* Renderer::sslpv() const { return modules_.find<Sslpv>(); }
 
 }  // namespace tallow::sss

@@ -1,10 +1,13 @@
 #pragma once
-// One frame as a plan of passes: only the passes this scene needs run (no point-light cube maps
-// without a point light that casts shadows, no shadow maps with shadows off…). plan() says which
-// and why (`--explain`); render() runs them and times each on the GPU.
+// One frame as a plan of passes (sss/frame_plan.h): the field objects' isosurfaces, the shadow
+// maps, the translucency method's passes and the camera pass. render() runs those whose declared
+// inputs changed (sss/pass.h says when a pass reruns), times each on the GPU, and keeps what they
+// made for the next frame; plan() and planFrame() say which passes and why (`--explain`).
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "gpu/gl_objects.h"
@@ -12,22 +15,18 @@
 #include "gpu/image.h"
 #include "gpu/shader_library.h"
 #include "sss/display_pass.h"
-#include "sss/field_objects.h"
-#include "sss/maps/radiosity_maps.h"
-#include "sss/maps/virtual_point_lights.h"
-#include "sss/peers/image_space.h"
+#include "sss/frame_plan.h"
+#include "sss/pass.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
-#include "sss/shadow_pass.h"
-#include "sss/surface_pass.h"
 
 namespace tallow::sss {
 
-struct PlannedPass {
-  std::string name;    ///< as in stats.json: "shadow.directional", "surface", …
-  std::string reason;  ///< why this scene needs it
-};
+class RadiosityMaps;
+class ImageSpaceSss;
+class VirtualPointLights;
+class Sslpv;
 
 /// Visible pixels of translucent objects shaded from the radiosity maps, and those no map sees
 /// (Algorithm 1's n = 0: they get B = 0).
@@ -47,13 +46,14 @@ void checkLimits(const Scene& scene, const RenderSettings& settings);
 
 class Renderer {
  public:
-  /// Compiles the passes and uploads the scene's shapes. Needs a current GL 4.5 context.
+  /// Compiles the shared passes and uploads the scene's shapes. Needs a current GL 4.5 context.
   Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings);
+  ~Renderer();
 
-  /// The passes of a first frame (field objects are always sampled and extracted then).
+  /// The passes of a first frame, with why the scene needs each (no GL context needed).
   static std::vector<PlannedPass> plan(const Scene& scene, const RenderSettings& settings);
-  /// The passes render(scene, settings, timeS) runs now: "field.sample" and "field.extract" only
-  /// when a field object must be isosurfaced again (t or field.res changed since the last frame).
+  /// The passes render(scene, settings, timeS) would run now: those whose declared inputs changed
+  /// since they last ran, the progressive ones still accumulating, and the camera pass.
   std::vector<PlannedPass> planFrame(const Scene& scene, const RenderSettings& settings, double timeS) const;
 
   /// Renders the frame at time `timeS` into the HDR target (settings.width × settings.height).
@@ -68,61 +68,62 @@ class Renderer {
   /// Per pixel of the last frame (top row first): 1 where the camera sees an opaque surface (a
   /// receiver of the VPLs' light), 0 elsewhere. Reads the frame back.
   std::vector<std::uint8_t> receiverMask() const;
-  const gpu::Texture& radiance() const { return radiance_; }
+  const gpu::Texture& radiance() const { return target_.radiance; }
   /// The camera target's coverage (Algorithm 1: r translucent, g seen by a map, b opaque) and depth
   /// attachments of the last frame, for the view window's debug views.
-  const gpu::Texture& coverage() const { return coverage_; }
-  const gpu::Texture& depth() const { return depth_; }
+  const gpu::Texture& coverage() const { return target_.coverage; }
+  const gpu::Texture& depth() const { return target_.depth; }
   /// Meshes, primitives and the last extraction of every field object; the field count reads a
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
-  std::size_t triangleCount() const { return geometry_.triangleCount() + fields_->triangleCount(); }
+  std::size_t triangleCount() const;
   std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers, maps
-  /// The radiosity maps, once a frame has used them (null before, or with another method).
-  const RadiosityMaps* radiosityMaps() const { return maps_.get(); }
+  /// The radiosity maps (their light G-buffers serve no-cache too), once a frame has used them.
+  const RadiosityMaps* radiosityMaps() const;
   const SceneGeometry& geometry() const { return geometry_; }
-  /// The image-space method's passes, once a frame has used them (null before, or with another method).
-  const ImageSpaceSss* imageSpace() const { return imageSpace_.get(); }
-  /// The VPLs of the last frame that had them (null before, or when the scene needs none).
-  const VirtualPointLights* virtualPointLights() const { return vpls_.get(); }
-  /// SSLPV's grids, once a frame has used them (null before, or with another method).
-  const Sslpv* sslpv() const { return sslpv_.get(); }
+  /// The image-space method's passes, once a frame has used them (null before).
+  const ImageSpaceSss* imageSpace() const;
+  /// The VPLs of the last frame that had them (null before).
+  const VirtualPointLights* virtualPointLights() const;
+  /// SSLPV's grids, once a frame has used them (null before).
+  const Sslpv* sslpv() const;
   /// Forgets what the progressive methods have accumulated, keeping every allocation: the next
-  /// frame restarts the radiosity maps (as a change of their state key does) and the no-cache
-  /// seeds and the image-space accumulation. For `tallow bench`, which times the frames after a
-  /// warm-up frame.
+  /// frame reruns every pass that reads the input "accumulation" (the methods' first passes, so the
+  /// passes after them too) and restarts the no-cache seeds. For `tallow bench`, which times the
+  /// frames after a warm-up frame.
   void restartAccumulation();
+  /// Forgets what every pass made: the next frame runs each planned pass as if it never ran
+  /// (tests compare it with the frame the declared inputs give).
+  void invalidate();
 
  private:
-  void ensureTargets(int width, int height);
-  /// What the radiosity maps depend on at time t (RadiosityMaps::stateKey).
-  std::string mapKey(const Scene& scene, const RenderSettings& settings, double timeS) const;
-  /// planFrame with the maps' state key already computed.
-  std::vector<PlannedPass> planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
-                                     const std::string& mapStateKey) const;
+  /// A resource's counts: `epoch` moves when its writer restarted (ran with changed inputs),
+  /// `version` at every write.
+  struct Stamp {
+    std::uint64_t epoch = 0, version = 0;
+    bool operator==(const Stamp&) const = default;
+  };
+  struct PassRecord {
+    std::uint64_t inputs = 0;             ///< fingerprint of the inputs it read at its last run
+    std::map<std::string, Stamp> seen;    ///< the resources it read, as they were then
+  };
+  enum class Due { No, Changed, Again };
+  /// Whether `pass` runs in `state`, given the resources' stamps `resources`.
+  Due due(const Pass& pass, const FrameState& state, const PassIo& io,
+          const std::map<std::string, Stamp>& resources) const;
+  /// The due passes of the frame in `state` in order, advancing `resources` as running them would.
+  std::vector<std::pair<Pass*, Due>> schedule(const FrameState& state, std::map<std::string, Stamp>& resources) const;
 
-  /// What SSLPV's medium grid depends on at time t (Sslpv::mediumKey, with the restarts).
-  std::string sslpvMediumKey(const Scene& scene, const RenderSettings& settings, double timeS) const;
-
-  /// What the VPLs depend on beyond the maps (vpl.* settings), with the maps' state key.
-  static std::string vplKey(const RenderSettings& settings, const std::string& mapStateKey);
-
-  SceneGeometry geometry_;
-  std::unique_ptr<FieldObjects> fields_;
   const gpu::ShaderLibrary& shaders_;
-  std::unique_ptr<RadiosityMaps> maps_;  ///< created on the first frame that needs it
-  std::unique_ptr<VirtualPointLights> vpls_;  ///< created on the first frame that needs them
-  std::unique_ptr<ImageSpaceSss> imageSpace_;  ///< created on the first frame that needs it
-  std::unique_ptr<Sslpv> sslpv_;         ///< created on the first frame that needs it
-  std::string vplKey_;                   ///< vplKey() of the last VPL pass
-  int vplFrame_ = 0;                     ///< frames with VPLs: seeds the directions when not stable
-  int noCacheFrame_ = 0;                 ///< seeds of the no-cache gather, one estimate per frame
-  int accumulation_ = 0;                 ///< restartAccumulation() calls: part of the maps' state key
-  ShadowPass shadows_;
-  SurfacePass surface_;
+  SceneGeometry geometry_;
+  ModuleStore modules_;
+  mutable FramePlan plan_;  ///< mutable: listing the plan points the camera pass at the frame's method
+  std::unordered_map<const Pass*, PassRecord> records_;
+  std::map<std::string, Stamp> resources_;
+  int accumulation_ = 0;  ///< restartAccumulation() calls: the input "accumulation"
+  bool forget_ = false;   ///< invalidate(): every pass of the next frame runs as changed
   DisplayPass display_;
   gpu::GpuTimer timer_;
-  gpu::Texture radiance_, coverage_, depth_;
-  gpu::Framebuffer target_;
+  CameraTarget target_;
 };
 
 }  // namespace tallow::sss

@@ -70,9 +70,17 @@ bool ShadowPass::needsPoint(const Scene& scene, const RenderSettings& settings) 
 }
 
 void ShadowPass::reset(std::size_t lightCount) {
+  resetDirectional(lightCount);
+  resetPoint(lightCount);
+}
+
+void ShadowPass::resetDirectional(std::size_t lightCount) {
   layers_.directionalLayer.assign(lightCount, -1);
   layers_.directionalMatrix.assign(lightCount, glm::mat4(1.0f));
   layers_.directionalTexel.assign(lightCount, 0.0f);
+}
+
+void ShadowPass::resetPoint(std::size_t lightCount) {
   layers_.pointCube.assign(lightCount, -1);
   layers_.pointRange.assign(lightCount, 1.0f);
 }
@@ -85,6 +93,7 @@ void ShadowPass::ensure(gpu::Texture& texture, bool cube, int size, int layers) 
 
 void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
   const std::size_t n = scene.lights.size();
+  resetDirectional(n);
   if (!needsDirectional(scene, settings)) return;
   int count = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -119,6 +128,7 @@ void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& set
 
 void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
   const std::size_t n = scene.lights.size();
+  resetPoint(n);
   if (!needsPoint(scene, settings)) return;
   int count = 0;
   for (std::size_t i = 0; i < n; ++i)

@@ -1,7 +1,10 @@
 #pragma once
 // Shadow maps of the lights that cast shadows: one layer of a 2D depth array per directional
 // light (orthographic, fitted to the scene), one cube of a cube-map array per point light
-// (distance / range as depth). Receivers sample them with hardware comparison.
+// (distance / range as depth). Receivers sample them with hardware comparison. The maps outlive a
+// frame: the passes shadow.directional and shadow.point (sss/frame_passes.h) redraw them only when
+// the geometry, the lights or the map size changed; receivers use a light's layer only while
+// render.shadows is on and the light casts shadows (setLightUniforms).
 #include <glm/glm.hpp>
 
 #include <vector>
@@ -30,11 +33,12 @@ class ShadowPass {
   static bool needsDirectional(const Scene& scene, const RenderSettings& settings);
   static bool needsPoint(const Scene& scene, const RenderSettings& settings);
 
-  /// Marks every light of a scene with `lightCount` lights unshadowed; call before rendering.
+  /// Marks every light of a scene with `lightCount` lights unshadowed.
   void reset(std::size_t lightCount);
-  /// Renders the directional-light shadow maps (if any light needs one).
+  /// Renders the directional-light shadow maps (if any light needs one); the layers of the other
+  /// lights say unshadowed. The point lights' layers are left as they are.
   void renderDirectional(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
-  /// Renders the point-light cube shadow maps (if any light needs one).
+  /// Renders the point-light cube shadow maps (if any light needs one); likewise for point lights.
   void renderPoint(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
 
   const ShadowLayers& layers() const { return layers_; }
@@ -45,6 +49,8 @@ class ShadowPass {
 
  private:
   void ensure(gpu::Texture& texture, bool cube, int size, int layers);
+  void resetDirectional(std::size_t lightCount);
+  void resetPoint(std::size_t lightCount);
   gpu::Program program_;
   gpu::Texture directional_, point_;
   gpu::Texture dummyDirectional_, dummyPoint_;

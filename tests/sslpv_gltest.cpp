@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gpu/gl_context.h"
+#include "sss/maps/radiosity_maps.h"
 #include "sss/peers/sslpv.h"
 #include "sss/peers/sslpv_math.h"
 #include "sss/scene_geometry.h"
@@ -128,7 +129,7 @@ glm::dvec3 injectedFlux(PresetSession& s, int injectSize) {
   settings.sss.lightMapSize = injectSize;
   sss::SceneGeometry geometry(s.scene());
   sss::RadiosityMaps gbuffers(shaders);
-  gbuffers.renderLightGBuffers(s.scene(), settings, geometry, "injection test");
+  gbuffers.renderLightGBuffers(s.scene(), settings, geometry);
   geometry::Aabb box;
   box.extend({-0.1f, 0.0f, -0.1f});
   box.extend({0.1f, 0.05f, 0.1f});

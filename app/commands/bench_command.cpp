@@ -22,6 +22,7 @@
 #include "gpu/gl_context.h"
 #include "gpu/image_error.h"
 #include "gpu/image_io.h"
+#include "sss/maps/radiosity_maps.h"
 #include "sss/reference/reference_integrator.h"
 #include "sss/renderer.h"
 
@@ -446,8 +447,9 @@ int runBench(const BenchOptions& o) {
   for (const Case& c : cases) {
     const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
     if (o.scene.explain)
-      for (const auto& p : sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render))
-        std::printf("%s: pass %-20s %s\n", c.name.c_str(), p.name.c_str(), p.reason.c_str());
+      std::fputs(sss::formatPlan(sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render), c.name + ": ")
+                     .c_str(),
+                 stdout);
     RowResult row = runRow(c, ref, shaders, o.frames, o.timeS, o.receivers);
     if (o.equalTime) {
       LoadedScene truth = loadScene(ref.scene);

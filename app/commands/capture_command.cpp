@@ -18,6 +18,8 @@
 #include "gpu/image_error.h"
 #include "gpu/image_io.h"
 #include "sss/field_source.h"
+#include "sss/maps/radiosity_maps.h"
+#include "sss/peers/sslpv.h"
 #include "sss/renderer.h"
 
 namespace tallow::app {
@@ -103,8 +105,7 @@ int runCapture(const CaptureOptions& options) {
   run.plan = sss::Renderer::plan(config.scene, config.render);
   run.accumulate = options.accumulate;
   run.parameters = registry.snapshot(config);
-  if (options.scene.explain)
-    for (const auto& p : run.plan) std::printf("pass %-20s %s\n", p.name.c_str(), p.reason.c_str());
+  if (options.scene.explain) std::fputs(sss::formatPlan(run.plan).c_str(), stdout);
 
   // Render every frame before writing any file, so that a failure leaves nothing behind.
   std::vector<gpu::Image> images;

@@ -1,4 +1,5 @@
 #include "app/commands/frame_stats.h"
+#include "sss/maps/radiosity_maps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -56,7 +57,8 @@ nlohmann::json toJson(const RunRecord& run) {
   json passMedians = json::object();
   for (auto& [name, values] : perPass) passMedians[name] = median(values);
   json plan = json::array();
-  for (const auto& p : run.plan) plan.push_back({{"name", p.name}, {"reason", p.reason}});
+  for (const auto& p : run.plan)
+    plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
   return {
       {"command", run.command},
       {"preset", {{"name", run.presetName}, {"path", run.presetPath}}},

@@ -14,6 +14,7 @@
 #include "gpu/atomic_file.h"
 #include "gpu/gl_context.h"
 #include "gpu/gl_objects.h"
+#include "sss/maps/radiosity_maps.h"
 #include "sss/renderer.h"
 
 namespace tallow::app {

@@ -143,8 +143,7 @@ int runView(const ViewOptions& options) {
   ViewPanel panel;
   ViewFeedback feedback;
   if (options.scene.explain)
-    for (const auto& p : sss::Renderer::plan(session.config().scene, session.config().render))
-      std::printf("pass %-20s %s\n", p.name.c_str(), p.reason.c_str());
+    std::fputs(sss::formatPlan(sss::Renderer::plan(session.config().scene, session.config().render)).c_str(), stdout);
 
   if (options.timeS) session.playback().seek(*options.timeS);
   if (options.paused) session.playback().pause();

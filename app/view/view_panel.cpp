@@ -11,6 +11,7 @@
 
 #include "app/config/setup.h"
 #include "sss/debug_view_pass.h"
+#include "sss/maps/radiosity_maps.h"
 
 namespace tallow::app {
 

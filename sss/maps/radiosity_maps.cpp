@@ -226,35 +226,7 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
                                 " MiB, over the " + std::to_string(kMapMemoryBudget >> 20) + " MiB map budget");
 }
 
-std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS) {
-  // Hexadecimal floats: exact, so any change of any input changes the key.
-  std::ostringstream k;
-  k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
-  const SssSettings& s = settings.sss;
-  k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
-    << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ',' << s.projectedArea << ',' << s.texelPlane << ';';
-  for (const glm::vec3& d : scene.mapDirections) k << d.x << ',' << d.y << ',' << d.z << ';';
-  for (const Light& l : scene.lights)
-    k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
-      << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
-      << ',' << l.intensity.z << ';';
-  for (const SceneObject& o : scene.objects) {
-    const Transform& t = o.transform;
-    k << o.translucent << ',' << t.position.x << ',' << t.position.y << ',' << t.position.z << ',' << t.rotationDeg.x
-      << ',' << t.rotationDeg.y << ',' << t.rotationDeg.z << ',' << t.scale << ',' << o.size.x << ',' << o.size.y
-      << ',' << o.size.z << ',';
-    const Material& m = o.material;
-    for (int c = 0; c < 3; ++c) k << m.sigma_a[c] << ',' << m.sigma_s[c] << ',' << m.g[c] << ',';
-    k << m.eta << ';';
-  }
-  return k.str();
-}
-
-bool RadiosityMaps::needsUpdate(const std::string& stateKey, const RenderSettings& settings) const {
-  return stateKey != key_ || frames_ < settings.sss.frames;
-}
-
-void RadiosityMaps::ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount) {
+void RadiosityMaps::ensureLightTargets(int dirCount, int pointCount) {
   const int lightSize = lightMapSize_;
   if (dirCount > 0 && (!dirPosition_.id() || dirPosition_.width() != lightSize || dirPosition_.depth() != dirCount)) {
     dirPosition_ = colourArray(GL_RGBA32F, lightSize, dirCount);
@@ -267,7 +239,9 @@ void RadiosityMaps::ensureTargets(const RenderSettings& settings, int k, int dir
     pointNormal_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
     pointDepth_ = gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, lightSize, pointCount);
   }
-  const int size = settings.sss.mapSize;
+}
+
+void RadiosityMaps::ensureMapTargets(int k, int size) {
   if (k > 0 && (!maps_.id() || maps_.width() != size || maps_.depth() != k)) {
     maps_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
     mapDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, k);
@@ -279,11 +253,7 @@ void RadiosityMaps::ensureTargets(const RenderSettings& settings, int k, int dir
 }
 
 void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings& settings,
-                                        const SceneGeometry& geometry, const std::string& stateKey) {
-  if (stateKey != key_) {  // restart the accumulation
-    key_ = stateKey;
-    frames_ = 0;
-  }
+                                        const SceneGeometry& geometry) {
   slots_.assign(scene.objects.size(), -1);
   int slot = 0;
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
@@ -297,9 +267,7 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   std::vector<int> dirLights, pointLights;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
     (scene.lights[i].kind == LightKind::Directional ? dirLights : pointLights).push_back(static_cast<int>(i));
-  ensureTargets(settings, applies(scene, settings) ? mapCount(scene, settings) : 0, static_cast<int>(dirLights.size()),
-                static_cast<int>(pointLights.size()));
-  if (frames_ > 0) return;  // light and geometry unchanged: the G-buffers of the first frame hold
+  ensureLightTargets(static_cast<int>(dirLights.size()), static_cast<int>(pointLights.size()));
 
   // Layer matrices: directional views fitted to the translucent objects (depth over the whole
   // scene, so occluders between the light and the object are in front), then point-light cubes.
@@ -456,9 +424,12 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   mapDepth_.bind(depthUnit);
 }
 
-void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
+                               bool restart) {
   const SssSettings& s = settings.sss;
   const int k = mapCount(scene, settings), size = s.mapSize;
+  if (restart) frames_ = 0;
+  ensureMapTargets(k, size);
   const bool compute = s.computeGather;
   LayeredState state;
   glViewport(0, 0, size, size);

@@ -9,6 +9,7 @@
 //      objects' bounding sphere, one layered depth pre-pass, then the estimator of Eq. 9 per
 //      visible texel with depth writes off, accumulated by additive blending over F frames while
 //      light and geometry stay still (progressive), with mipmaps.
+// The passes that run them, and what restarts the accumulation, are in sss/maps/maps_method.h.
 // Opaque objects are drawn into the light G-buffers as occluders (tag 0) but get no maps.
 #include <glm/glm.hpp>
 
@@ -92,16 +93,13 @@ class RadiosityMaps {
   /// when the scene has more translucent objects or lights than the passes hold.
   static void checkLimits(const Scene& scene, const RenderSettings& settings);
 
-  /// Whether the maps must be (re)computed this frame: `stateKey` describes everything the maps
-  /// depend on (lights, geometry time, transforms, materials, sss settings); a new key restarts
-  /// the accumulation; the same key accumulates until sss.frames frames, then the maps are
-  /// converged and only the camera pass runs.
-  bool needsUpdate(const std::string& stateKey, const RenderSettings& settings) const;
-  /// Steps 1 and 2 for one frame (call only when needsUpdate): restarts on a new key, renders the
-  /// light G-buffers and adds one frame of N samples to every map.
-  void renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                           const std::string& stateKey);
-  void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
+  /// Step 1 (pass sss.light_gbuffer): the translucent slots, the objects' bounding sphere, the light
+  /// G-buffers' size and textures, then every light's G-buffer drawn.
+  void renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
+  /// Step 2 (pass sss.maps): with `restart`, the K views and the maps' depth (or G-buffer) anew and
+  /// the accumulation emptied; then one frame of N samples added to every map. Needs the light
+  /// G-buffers of renderLightGBuffers.
+  void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry, bool restart);
 
   int frames() const { return frames_; }   ///< F, frames accumulated in the maps
   int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
@@ -137,11 +135,9 @@ class RadiosityMaps {
   const std::vector<glm::vec3>& directionalTangents() const { return dirTangent_; }
   const std::vector<glm::vec3>& directionalBitangents() const { return dirBitangent_; }
 
-  /// Everything a state key is built from; exposed for tests.
-  static std::string stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS);
-
  private:
-  void ensureTargets(const RenderSettings& settings, int k, int dirCount, int pointCount);
+  void ensureLightTargets(int dirCount, int pointCount);
+  void ensureMapTargets(int k, int size);
   void setLightUniforms(gpu::Program& program, const Scene& scene, GLuint firstUnit) const;
 
 
@@ -159,7 +155,6 @@ class RadiosityMaps {
   std::vector<glm::vec3> dirTangent_, dirBitangent_;
   std::vector<int> slots_;
   BoundingSphere sphere_;
-  std::string key_;
   int frames_ = 0;
   int lightMapSize_ = 0;
 };

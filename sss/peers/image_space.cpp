@@ -103,25 +103,6 @@ std::string ImageSpaceSss::describe(const Scene& scene, const RenderSettings& se
          (s.renormalize ? "divided by the sampled share of R_d on visible surface" : "over the visible surface");
 }
 
-std::string ImageSpaceSss::stateKey(const std::string& sceneKey, const Scene& scene, const RenderSettings& settings) {
-  // Hexadecimal floats: exact, so any change of any input changes the key.
-  std::ostringstream k;
-  k << sceneKey << "|image-space " << std::hexfloat;
-  const Camera& c = scene.camera;
-  k << c.orthographic << ',' << c.position.x << ',' << c.position.y << ',' << c.position.z << ',' << c.target.x << ','
-    << c.target.y << ',' << c.target.z << ',' << c.up.x << ',' << c.up.y << ',' << c.up.z << ',' << c.fovYDeg << ','
-    << c.orthoHeight << ';' << settings.width << ',' << settings.height << ';' << settings.shadows << ','
-    << settings.shadowMapSize << ',' << settings.shadowBias << ',' << settings.pcfRadius << ';';
-  const ImageSpaceSettings& s = settings.imageSpace;
-  k << s.samples << ',' << s.uniformShare << ',' << s.tile << ',' << s.radius << ',' << s.frames << ',' << s.depthRatio
-    << ',' << s.jacobian << ',' << s.renormalize;
-  return k.str();
-}
-
-bool ImageSpaceSss::needsUpdate(const std::string& stateKey, const RenderSettings& settings) const {
-  return stateKey != key_ || frames_ < settings.imageSpace.frames;
-}
-
 void ImageSpaceSss::ensureTargets(int width, int height) {
   if (position_.id() && position_.width() == width && position_.height() == height) return;
   position_ = screenTexture(GL_RGBA32F, width, height);
@@ -151,10 +132,15 @@ void ImageSpaceSss::ensureTargets(int width, int height) {
   accumTarget_.checkComplete("image-space accumulation");
 }
 
-void ImageSpaceSss::renderGBuffer(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                                  const CameraView& camera, const ShadowPass& shadows, const std::string& stateKey) {
-  key_ = stateKey;
+void ImageSpaceSss::restart() {
   frames_ = 0;
+  if (!accumSum_.id()) return;  // nothing accumulated yet (renderGBuffer allocates the targets)
+  const float zero[4] = {0, 0, 0, 0};
+  for (GLint i = 0; i < 2; ++i) glClearNamedFramebufferfv(accumTarget_.id(), GL_COLOR, i, zero);
+}
+
+void ImageSpaceSss::renderGBuffer(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
+                                  const CameraView& camera, const ShadowPass& shadows) {
   slots_.assign(scene.objects.size(), -1);
   int slot = 0;
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
@@ -164,7 +150,6 @@ void ImageSpaceSss::renderGBuffer(const Scene& scene, const RenderSettings& sett
   const float one = 1.0f;
   for (GLint i = 0; i < 3; ++i) glClearNamedFramebufferfv(gbufferTarget_.id(), GL_COLOR, i, zero);
   glClearNamedFramebufferfv(gbufferTarget_.id(), GL_DEPTH, 0, &one);
-  for (GLint i = 0; i < 2; ++i) glClearNamedFramebufferfv(accumTarget_.id(), GL_COLOR, i, zero);
 
   gpu::Program& p = gbufferProgram_;
   setLightUniforms(p, scene, settings, shadows, kDirectionalShadowUnit, kPointShadowUnit);

@@ -50,18 +50,11 @@ class ImageSpaceSss {
   static void checkLimits(const Scene& scene, const RenderSettings& settings);
   /// Why each of the three passes runs, for the frame plan (`pass`: "image_space.gbuffer", …).
   static std::string describe(const Scene& scene, const RenderSettings& settings, const std::string& pass);
-  /// What the accumulation depends on: the radiosity maps' key (lights, geometry at its time,
-  /// transforms, materials; `sceneKey`), the camera, the size, the shadows and image_space.*.
-  static std::string stateKey(const std::string& sceneKey, const Scene& scene, const RenderSettings& settings);
-
-  /// Whether a frame must still be added (a new key restarts, then image_space.frames are added).
-  bool needsUpdate(const std::string& stateKey, const RenderSettings& settings) const;
-  /// Whether the G-buffer must be drawn: a new key (it holds for every frame of one accumulation).
-  bool needsGBuffer(const std::string& stateKey) const { return stateKey != key_ || frames_ == 0; }
-
-  /// Pass 1; restarts the accumulation on a new key.
+  /// Pass 1: the camera's G-buffer with the irradiance (deterministic).
   void renderGBuffer(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                     const CameraView& camera, const ShadowPass& shadows, const std::string& stateKey);
+                     const CameraView& camera, const ShadowPass& shadows);
+  /// Empties the accumulation (the next frame is its first).
+  void restart();
   /// Pass 2 (the pattern of accumulated frame frames(), then the per-pixel estimate).
   void scatter(const Scene& scene, const RenderSettings& settings, const CameraView& camera);
   /// Pass 3; counts the frame.
@@ -95,7 +88,6 @@ class ImageSpaceSss {
   gpu::Buffer pattern_;
   gpu::VertexArray emptyVao_;
   std::vector<int> slots_;
-  std::string key_;
   int frames_ = 0;
 };
 

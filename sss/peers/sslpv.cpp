@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <climits>
-#include <sstream>
 #include <stdexcept>
 
 namespace tallow::sss {
@@ -34,11 +33,6 @@ geometry::Aabb translucentBox(const Scene& scene, const SceneGeometry& geometry)
     box.extend(item.worldBounds.max);
   }
   return box;
-}
-
-void writeMaterial(std::ostringstream& k, const Material& m) {
-  for (int c = 0; c < 3; ++c) k << m.sigma_a[c] << ',' << m.sigma_s[c] << ',' << m.g[c] << ',';
-  k << m.eta << ';';
 }
 
 }  // namespace
@@ -94,37 +88,6 @@ void Sslpv::checkLimits(const Scene& scene, const RenderSettings& settings) {
                                 std::to_string(INT_MAX));
 }
 
-std::string Sslpv::mediumKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS) {
-  // Hexadecimal floats: exact, so any change of any input changes the key.
-  std::ostringstream k;
-  k << std::hexfloat << "sslpv medium;" << fieldTimeS << ';' << settings.fieldRes << ';' << settings.sslpv.grid << ';';
-  for (const SceneObject& o : scene.objects) {
-    const Transform& t = o.transform;
-    k << o.translucent << ',' << t.position.x << ',' << t.position.y << ',' << t.position.z << ',' << t.rotationDeg.x
-      << ',' << t.rotationDeg.y << ',' << t.rotationDeg.z << ',' << t.scale << ',' << o.size.x << ',' << o.size.y
-      << ',' << o.size.z << ',';
-    writeMaterial(k, o.material);
-    if (o.volume) {
-      const MaterialVolume& v = *o.volume;
-      k << "volume," << v.axis.x << ',' << v.axis.y << ',' << v.axis.z << ',' << v.period << ',' << v.fraction << ','
-        << v.turbulence << ',' << v.seed << ',';
-      writeMaterial(k, v.material);
-    }
-  }
-  return k.str();
-}
-
-std::string Sslpv::lightKey(const Scene& scene, const RenderSettings& settings, const std::string& mediumKey) {
-  std::ostringstream k;
-  const SslpvSettings& s = settings.sslpv;
-  k << std::hexfloat << mediumKey << "|sslpv light;" << s.steps << ',' << s.skip << ',' << s.injectSize << ';';
-  for (const Light& l : scene.lights)
-    k << static_cast<int>(l.kind) << ',' << l.direction.x << ',' << l.direction.y << ',' << l.direction.z << ','
-      << l.position.x << ',' << l.position.y << ',' << l.position.z << ',' << l.intensity.x << ',' << l.intensity.y
-      << ',' << l.intensity.z << ';';
-  return k.str();
-}
-
 std::string Sslpv::describeVoxelize(const Scene& scene, const RenderSettings& settings) {
   const int n = settings.sslpv.grid;
   return std::to_string(translucentCount(scene)) + " translucent object(s) voxelised by parity along x, y and z into a " +
@@ -158,19 +121,14 @@ RenderSettings Sslpv::gbufferSettings(const RenderSettings& settings) {
   return s;
 }
 
-void Sslpv::voxelize(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                     const std::string& mediumKey) {
+void Sslpv::voxelize(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
   slots_ = translucentSlots(scene);
   grid_ = fitSslpvGrid(translucentBox(scene, geometry), settings.sslpv.grid);
   medium_.build(scene, geometry, slots_, grid_);
-  mediumKey_ = mediumKey;
-  lightKey_.clear();  // the accumulation grid no longer matches the medium
 }
 
-void Sslpv::renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                                const std::string& lightKey) {
-  gbuffers_.renderLightGBuffers(scene, gbufferSettings(settings), geometry, lightKey);
-  lightKey_ = lightKey;
+void Sslpv::renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry) {
+  gbuffers_.renderLightGBuffers(scene, gbufferSettings(settings), geometry);
 }
 
 void Sslpv::inject(const Scene& scene, const RenderSettings& settings) {
@@ -184,7 +142,6 @@ void Sslpv::propagate(const RenderSettings& settings) {
 }
 
 void Sslpv::setLookupUniforms(gpu::Program& p, const RenderSettings& settings, GLuint firstUnit) const {
-  p.set("uSslpv", 1);
   p.set("uSslpvAccR", static_cast<int>(firstUnit + kAccumulationUnit));
   p.set("uSslpvAccG", static_cast<int>(firstUnit + kAccumulationUnit + 1));
   p.set("uSslpvAccB", static_cast<int>(firstUnit + kAccumulationUnit + 2));
@@ -197,7 +154,6 @@ void Sslpv::setLookupUniforms(gpu::Program& p, const RenderSettings& settings, G
 }
 
 void Sslpv::setLookupOff(gpu::Program& p, GLuint firstUnit) {
-  p.set("uSslpv", 0);
   p.set("uSslpvAccR", static_cast<int>(firstUnit + kAccumulationUnit));
   p.set("uSslpvAccG", static_cast<int>(firstUnit + kAccumulationUnit + 1));
   p.set("uSslpvAccB", static_cast<int>(firstUnit + kAccumulationUnit + 2));

@@ -11,7 +11,7 @@
 //                       (sss/peers/sslpv_propagation.h);
 // and every frame the camera pass reads the accumulation grid (Eqs. 6–7, shaders/peers/sslpv/lookup.glsl).
 // Everything is deterministic: with the same scene and settings a recomputation gives the same
-// grids, so the four passes run only when their inputs changed.
+// grids, so the four passes run only when their inputs changed (sss/peers/sslpv_method.h).
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,30 +44,20 @@ class Sslpv {
   /// GPU bytes of the grids for `size`³ cells and `objects` translucent objects.
   static std::size_t gridBytes(int size, int objects);
 
-  /// What the medium grid depends on (geometry time, transforms, materials, volumes, sslpv.grid).
-  static std::string mediumKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS);
-  /// What the accumulation grid depends on: the medium key, the lights and the sslpv settings
-  /// used before the camera pass.
-  static std::string lightKey(const Scene& scene, const RenderSettings& settings, const std::string& mediumKey);
-  bool mediumStale(const std::string& key) const { return key != mediumKey_; }
-  bool lightStale(const std::string& key) const { return key != lightKey_; }
-
   /// The plan's reasons for the four passes.
   static std::string describeVoxelize(const Scene& scene, const RenderSettings& settings);
   static std::string describeLightGBuffer(const Scene& scene, const RenderSettings& settings);
   static std::string describeInject(const RenderSettings& settings);
   static std::string describePropagate(const RenderSettings& settings);
 
-  void voxelize(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                const std::string& mediumKey);
-  void renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                           const std::string& lightKey);
+  void voxelize(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
+  void renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
   void inject(const Scene& scene, const RenderSettings& settings);
   void propagate(const RenderSettings& settings);
 
-  /// Everything shaders/peers/sslpv/lookup.glsl reads (uSslpv = 1), the grids on units firstUnit … + 3.
+  /// Everything shaders/peers/sslpv/lookup.glsl reads, the grids on units firstUnit … + 3.
   void setLookupUniforms(gpu::Program& program, const RenderSettings& settings, GLuint firstUnit) const;
-  /// uSslpv = 0 and the look-up's samplers on their own units firstUnit … + 3 (unused).
+  /// The look-up's samplers on their own units firstUnit … + 3 (unused).
   static void setLookupOff(gpu::Program& program, GLuint firstUnit);
 
   const SslpvGrid& grid() const { return grid_; }
@@ -85,7 +75,6 @@ class Sslpv {
   SslpvPropagation propagation_;
   SslpvGrid grid_;
   std::vector<int> slots_;
-  std::string mediumKey_, lightKey_;
 };
 
 }  // namespace tallow::sss

@@ -4,7 +4,6 @@
 // caller's L_o = F_t(ω_o)/π · B is Eq. 7's T(ω_i, ω_o) L_i.
 #include "peers/sslpv/sh.glsl"
 
-uniform int uSslpv;            // 1: translucent objects are shaded from the SSLPV grid
 uniform sampler3D uSslpvAccR;  // accumulation grid per band (SH coefficients)
 uniform sampler3D uSslpvAccG;
 uniform sampler3D uSslpvAccB;

@@ -1,0 +1,139 @@
+#include "sss/frame_passes.h"
+
+#include <algorithm>
+
+#include "sss/field_objects.h"
+#include "sss/field_source.h"
+#include "sss/shadow_pass.h"
+#include "sss/surface_pass.h"
+#include "sss/translucency_method.h"
+
+namespace tallow::sss {
+namespace {
+
+int fieldCount(const Scene& scene) {
+  return static_cast<int>(std::count_if(scene.objects.begin(), scene.objects.end(),
+                                        [](const SceneObject& o) { return o.shape == ShapeKind::Field; }));
+}
+
+bool anyAnimatedField(const Scene& scene) {
+  return std::any_of(scene.objects.begin(), scene.objects.end(),
+                     [](const SceneObject& o) { return o.shape == ShapeKind::Field && fieldAnimated(o.field); });
+}
+
+int shadowedLights(const Scene& scene, LightKind kind) {
+  return static_cast<int>(std::count_if(scene.lights.begin(), scene.lights.end(),
+                                        [&](const Light& l) { return l.castsShadows && l.kind == kind; }));
+}
+
+/// What a shadow pass reads: the shapes that cast and receive, where the lights are, the map size.
+PassIo shadowIo(const char* written) {
+  return {{resource::kGeometry, "scene.shapes", "scene.light_placement", "render.shadows", "render.shadow_map_size"},
+          {written},
+          {}};
+}
+
+}  // namespace
+
+// --- fields ---------------------------------------------------------------------------------------
+
+bool FieldSamplePass::needed(const FrameState& state) const { return fieldCount(state.scene) > 0; }
+
+std::string FieldSamplePass::reason(const FrameState& state) const {
+  return std::to_string(fieldCount(state.scene)) + " field object(s) at a new time: sampled on the CPU on a " +
+         std::to_string(state.settings.fieldRes) + "^3 lattice and uploaded";
+}
+
+PassIo FieldSamplePass::io(const FrameState& state) const {
+  // The fields' shapes are fixed when the renderer is made (FieldObjects); only t and the lattice
+  // resolution change what is sampled. A field that does not move does not read t.
+  PassIo io{{"field.res"}, {resource::kFieldLattice}, {}};
+  if (anyAnimatedField(state.scene)) io.reads.push_back("time");
+  return io;
+}
+
+void FieldSamplePass::run(FrameContext& context, bool /*changed*/) {
+  context.modules.find<FieldObjects>()->sample(context.state.timeS, context.settings().fieldRes, context.geometry);
+  context.geometry.update(context.scene());
+}
+
+bool FieldExtractPass::needed(const FrameState& state) const { return fieldCount(state.scene) > 0; }
+
+std::string FieldExtractPass::reason(const FrameState&) const {
+  return "GPU dual contouring (surface nets) of the uploaded lattice(s) into transform-feedback buffers";
+}
+
+PassIo FieldExtractPass::io(const FrameState&) const { return {{resource::kFieldLattice}, {resource::kGeometry}, {}}; }
+
+void FieldExtractPass::run(FrameContext& context, bool /*changed*/) { context.modules.find<FieldObjects>()->extract(); }
+
+// --- shadow maps ----------------------------------------------------------------------------------
+
+bool DirectionalShadowPass::needed(const FrameState& state) const {
+  return ShadowPass::needsDirectional(state.scene, state.settings);
+}
+
+std::string DirectionalShadowPass::reason(const FrameState& state) const {
+  return std::to_string(shadowedLights(state.scene, LightKind::Directional)) +
+         " directional light(s) cast shadows: one orthographic depth layer each";
+}
+
+PassIo DirectionalShadowPass::io(const FrameState&) const { return shadowIo(resource::kShadowDirectional); }
+
+void DirectionalShadowPass::run(FrameContext& context, bool /*changed*/) {
+  context.modules.find<ShadowPass>()->renderDirectional(context.scene(), context.settings(), context.geometry);
+}
+
+bool PointShadowPass::needed(const FrameState& state) const { return ShadowPass::needsPoint(state.scene, state.settings); }
+
+std::string PointShadowPass::reason(const FrameState& state) const {
+  return std::to_string(shadowedLights(state.scene, LightKind::Point)) +
+         " point light(s) cast shadows: one depth cube each (6 faces)";
+}
+
+PassIo PointShadowPass::io(const FrameState&) const { return shadowIo(resource::kShadowPoint); }
+
+void PointShadowPass::run(FrameContext& context, bool /*changed*/) {
+  context.modules.find<ShadowPass>()->renderPoint(context.scene(), context.settings(), context.geometry);
+}
+
+// --- the camera pass --------------------------------------------------------------------------------
+
+std::string CameraPass::reason(const FrameState& state) const {
+  const std::string translucent =
+      method_->shading(state) == SurfaceShading::None
+          ? "Lambertian with direct light, shadows and ambient (method albedo: translucent objects use their albedo)"
+          : method_->describeShading(state) + ", opaque ones Lambertian";
+  return std::to_string(state.scene.objects.size()) + " object(s): " + translucent +
+         " with direct light, shadows and ambient";
+}
+
+PassIo CameraPass::io(const FrameState& state) const {
+  PassIo io{{resource::kGeometry, resource::kShadowDirectional, resource::kShadowPoint, "scene.shapes", "scene.albedo",
+             "scene.materials", "scene.light_placement", "scene.light_intensity", "scene.camera", "scene.environment",
+             "scene.ambient", "scene.background", "render.width", "render.height", "render.shadows",
+             "render.shadow_bias", "render.pcf_radius", "render.specular", "method"},
+            {resource::kCamera},
+            {}};
+  const PassIo m = method_->surfaceIo(state);
+  io.reads.insert(io.reads.end(), m.reads.begin(), m.reads.end());
+  return io;
+}
+
+void CameraPass::run(FrameContext& context, bool /*changed*/) {
+  if (context.state.accumulation != accumulation_) {  // Renderer::restartAccumulation: the seeds start over
+    accumulation_ = context.state.accumulation;
+    frame_ = 0;
+  }
+  const CameraTarget& t = context.target;
+  const glm::vec4 clear(context.scene().background, 1.0f);
+  glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 0, &clear.x);
+  const glm::vec4 none(0.0f);
+  glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 1, &none.x);
+  const float one = 1.0f;
+  glClearNamedFramebufferfv(t.framebuffer.id(), GL_DEPTH, 0, &one);
+  context.cameraFrame = frame_++;
+  context.modules.find<SurfacePass>()->render(context);
+}
+
+}  // namespace tallow::sss

@@ -1,0 +1,181 @@
+#include "sss/maps/maps_method.h"
+
+#include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
+
+namespace tallow::sss {
+namespace {
+
+int countLights(const Scene& scene, LightKind kind) {
+  int n = 0;
+  for (const Light& l : scene.lights) n += l.kind == kind ? 1 : 0;
+  return n;
+}
+
+/// What the gather (maps/gather.glsl) reads beyond the light G-buffers: the lights' radiometry and
+/// placement, the materials, the model and its sampling options. The maps' pass and the no-cache
+/// camera pass both run it.
+std::vector<std::string> gatherReads() {
+  return {resource::kLightGBuffers, "scene.light_placement", "scene.light_intensity", "scene.materials", "sss.model",
+          "sss.samples", "sss.stereographic", "sss.projected_area", "sss.texel_plane"};
+}
+
+void append(std::vector<std::string>& to, const std::vector<std::string>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+RadiosityMaps& maps(FrameContext& context) { return context.modules.obtain<RadiosityMaps>(context.shaders); }
+
+}  // namespace
+
+// --- sss.light_gbuffer ----------------------------------------------------------------------------
+
+std::string LightGBufferPass::reason(const FrameState& state) const {
+  return std::to_string(countLights(state.scene, LightKind::Directional)) + " directional (orthographic layer) and " +
+         std::to_string(countLights(state.scene, LightKind::Point)) + " point (cube) light G-buffer(s), " +
+         std::to_string(state.settings.sss.lightMapSize) + "^2, one layered pass each kind";
+}
+
+PassIo LightGBufferPass::io(const FrameState&) const {
+  // The materials set the size when sss.light_map_auto fits it to the shortest 1/σ_tr; "accumulation"
+  // makes a restart of the progressive methods (bench) redraw it, as their first frame does.
+  return {{resource::kGeometry, "scene.shapes", "scene.light_placement", "scene.materials", "sss.light_map_size",
+           "sss.light_map_auto", "accumulation"},
+          {resource::kLightGBuffers},
+          {}};
+}
+
+void LightGBufferPass::run(FrameContext& context, bool /*changed*/) {
+  maps(context).renderLightGBuffers(context.scene(), context.settings(), context.geometry);
+}
+
+// --- sss.maps -------------------------------------------------------------------------------------
+
+std::string RadiosityMapsPass::reason(const FrameState& state) const {
+  const SssSettings& s = state.settings.sss;
+  return std::to_string(mapCount(state.scene, state.settings)) +
+         (state.scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") + " scattered radiosity maps of " +
+         std::to_string(s.mapSize) + "^2: depth pre-pass, then " + std::to_string(s.samples) +
+         " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
+         " dipole), accumulated until " + std::to_string(s.frames) + " frames";
+}
+
+PassIo RadiosityMapsPass::io(const FrameState&) const {
+  PassIo io{{resource::kGeometry, "scene.shapes", "scene.map_directions", "sss.maps", "sss.map_size", "sss.gather",
+             "accumulation"},
+            {resource::kRadiosityMaps},
+            {"sss.frames"}};
+  append(io.reads, gatherReads());
+  return io;
+}
+
+bool RadiosityMapsPass::runsAgain(const FrameState& state) const { return frames_ < state.settings.sss.frames; }
+
+void RadiosityMapsPass::run(FrameContext& context, bool changed) {
+  frames_ = changed ? 1 : frames_ + 1;
+  maps(context).renderMaps(context.scene(), context.settings(), context.geometry, changed);
+}
+
+// --- vpl --------------------------------------------------------------------------------------------
+
+std::string VplPass::reason(const FrameState& state) const {
+  return VirtualPointLights::describe(state.scene, state.settings);
+}
+
+PassIo VplPass::io(const FrameState&) const {
+  // B(x_v) comes from Algorithm 1 over the maps (sss.bias, sss.comb, sss.view_weight); placement
+  // auto looks for point lights inside the translucent objects' box; A_v needs the shapes.
+  return {{resource::kRadiosityMaps, resource::kGeometry, "scene.shapes", "scene.materials", "scene.light_placement",
+           "sss.bias", "sss.comb", "sss.view_weight", "vpl.count", "vpl.cube_size", "vpl.placement", "vpl.area",
+           "vpl.stable", "vpl.shadows", "vpl.shadow_clusters", "vpl.shadow_size"},
+          {resource::kVpls},
+          {}};
+}
+
+void VplPass::run(FrameContext& context, bool /*changed*/) {
+  auto& vpls = context.modules.obtain<VirtualPointLights>(context.shaders);
+  vpls.render(context.scene(), context.settings(), context.geometry, *context.modules.find<RadiosityMaps>(), frame_++);
+}
+
+// --- the methods ------------------------------------------------------------------------------------
+
+void RadiosityMapsMethod::checkLimits(const FrameState& state) const {
+  RadiosityMaps::checkLimits(state.scene, state.settings);
+  VirtualPointLights::checkLimits(state.scene, state.settings);
+}
+
+std::vector<Pass*> RadiosityMapsMethod::passes(const FrameState& state) {
+  if (!anyTranslucent(state.scene)) return {};
+  std::vector<Pass*> p{gbuffer_.get(), &maps_};
+  if (VirtualPointLights::applies(state.scene, state.settings)) p.push_back(&vpl_);
+  return p;
+}
+
+SurfaceShading RadiosityMapsMethod::shading(const FrameState& state) const {
+  return anyTranslucent(state.scene) ? SurfaceShading::Algorithm1 : SurfaceShading::None;
+}
+
+std::string RadiosityMapsMethod::describeShading(const FrameState&) const {
+  return "translucent ones from the radiosity maps (Algorithm 1, Eq. 5)";
+}
+
+PassIo RadiosityMapsMethod::surfaceIo(const FrameState& state) const {
+  PassIo io{{resource::kRadiosityMaps, "sss.bias", "sss.comb", "sss.view_weight"}, {}, {}};
+  if (VirtualPointLights::applies(state.scene, state.settings)) io.reads.push_back(resource::kVpls);
+  return io;
+}
+
+void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit,
+                                      bool active) const {
+  const GLuint mapsUnit = firstUnit, depthUnit = firstUnit + 1, vplShadowUnit = firstUnit + 2;
+  const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
+  if (active && maps && shading(context.state) == SurfaceShading::Algorithm1) {
+    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit);
+  } else {
+    p.set("uMaps", static_cast<int>(mapsUnit));
+    p.set("uMapDepth", static_cast<int>(depthUnit));
+    p.set("uMapCount", 0);
+  }
+  const bool vpls = active && VirtualPointLights::applies(context.scene(), context.settings());
+  VirtualPointLights::setReceiverUniforms(p, vpls ? context.modules.find<VirtualPointLights>() : nullptr,
+                                          vplShadowUnit);
+}
+
+std::vector<Pass*> NoCacheMethod::passes(const FrameState& state) {
+  if (!anyTranslucent(state.scene)) return {};
+  return {gbuffer_.get()};
+}
+
+SurfaceShading NoCacheMethod::shading(const FrameState& state) const {
+  return anyTranslucent(state.scene) ? SurfaceShading::Gather : SurfaceShading::None;
+}
+
+std::string NoCacheMethod::describeShading(const FrameState& state) const {
+  return "translucent ones by the gather per pixel against the light G-buffers (no-cache: " +
+         std::to_string(state.settings.sss.samples) + " samples per pixel and band, a new estimate every frame)";
+}
+
+PassIo NoCacheMethod::surfaceIo(const FrameState&) const {
+  // A restart of the accumulation (bench) starts the frames' seeds over.
+  PassIo io{{"accumulation"}, {}, {}};
+  append(io.reads, gatherReads());
+  return io;
+}
+
+void NoCacheMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit, bool active) const {
+  // The gather's samplers on their own units even when unused: a sampler left on unit 0 would clash
+  // with the shadow map's type there and void every draw.
+  p.set("uSssDirPosition", static_cast<int>(firstUnit));
+  p.set("uSssDirNormal", static_cast<int>(firstUnit + 1));
+  p.set("uSssPointGPosition", static_cast<int>(firstUnit + 2));
+  p.set("uSssPointGNormal", static_cast<int>(firstUnit + 3));
+  const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
+  if (active && maps && shading(context.state) == SurfaceShading::Gather)
+    maps->setGatherUniforms(p, context.scene(), context.settings(), firstUnit, context.cameraFrame);
+}
+
+void NoCacheMethod::bindSurfaceObject(gpu::Program& p, const FrameContext& context, int objectIndex) const {
+  p.set("uSlot", context.modules.find<RadiosityMaps>()->slots()[static_cast<std::size_t>(objectIndex)]);
+}
+
+}  // namespace tallow::sss

@@ -1,0 +1,25 @@
+#include "sss/pass.h"
+
+namespace tallow::sss {
+
+void CameraTarget::ensure(int width, int height) {
+  if (radiance.id() && radiance.width() == width && radiance.height() == height) return;
+  radiance = gpu::Texture::create2D(GL_RGBA32F, width, height);
+  radiance.setFilter(GL_NEAREST, GL_NEAREST);
+  depth = gpu::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+  coverage = gpu::Texture::create2D(GL_RGBA8, width, height);
+  coverage.setFilter(GL_NEAREST, GL_NEAREST);
+  framebuffer = gpu::Framebuffer();
+  framebuffer.attachColor(0, radiance);
+  framebuffer.attachColor(1, coverage);
+  framebuffer.attachDepth(depth);
+  framebuffer.setDrawBuffers(2);
+  framebuffer.checkComplete("camera target");
+}
+
+CameraView FrameContext::camera() const {
+  const float aspect = static_cast<float>(settings().width) / static_cast<float>(settings().height);
+  return cameraView(scene().camera, aspect, geometry.worldBounds());
+}
+
+}  // namespace tallow::sss
