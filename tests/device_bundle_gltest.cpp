@@ -17,7 +17,10 @@
 #include <sstream>
 #include <string>
 
+#include <glad/gl.h>
+
 #include "app/bench_report/gather_flops.h"
+#include "gpu/gl_context.h"
 #include "sss/bssrdf/material.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
@@ -201,6 +204,29 @@ TEST(DeviceBundle, ScriptsRefuseBadArgumentsWithOneLine) {
   EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("not a CMake build folder"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+/// bench.sh counts the OpenGL errors in each row's log: TALLOW_GL_ERRORS=1 must print them in a
+/// Release build. A draw with no framebuffer in a surfaceless EGL context is the error it first
+/// caught (below).
+TEST(DeviceBundle, GlErrorsAreReportedWhenAskedFor) {
+  ASSERT_EQ(setenv("TALLOW_GL_ERRORS", "1", 1), 0);
+  gpu::ContextOptions options;
+  options.backend = gpu::GlBackend::Egl;
+  options.debugOutput = false;  // as in Release: only the variable turns the reports on
+  const auto context = gpu::GlContext::create(options);
+  unsetenv("TALLOW_GL_ERRORS");
+  GLuint vao = 0;
+  glCreateVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  testing::internal::CaptureStderr();
+  glDrawArrays(GL_POINTS, 0, 1);  // no default framebuffer: GL_INVALID_FRAMEBUFFER_OPERATION
+  glFinish();
+  const std::string err = testing::internal::GetCapturedStderr();
+  glBindVertexArray(0);
+  glDeleteVertexArrays(1, &vao);
+  EXPECT_EQ(err.rfind("gl error ", 0), 0u) << err;
 }
 
 /// The bench renders through EGL, whose surfaceless contexts have no default framebuffer: dual

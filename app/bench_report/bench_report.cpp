@@ -126,8 +126,8 @@ json captureMetrics(const json& stats) {
   const json& res = stats.at("resolution");
   json out = {{"resolution", res},
               {"frames_captured", frames.size()},
-              {"triangles", stats.value("triangles", 0)},
-              {"gpu_memory_bytes", stats.value("gpu_memory_bytes", 0)},
+              {"triangles", stats.value("triangles", json(0))},  // json defaults: byte counts pass 2³¹
+              {"gpu_memory_bytes", stats.value("gpu_memory_bytes", json(0))},
               {"parameters", params},
               {"all", frameGroup(timed)},
               {"classes", classes}};
@@ -146,10 +146,10 @@ json mapsMetrics(const json& maps) {
           {"n", r.at("n")},
           {"map_size", r.at("map_size")},
           {"maps_ms", r.at("maps_ms")},
-          {"frame_wall_ms", r.value("frame_wall_ms", 0.0)},
+          {"frame_wall_ms", r.value("frame_wall_ms", json(nullptr))},
           {"shaded_texels", r.at("shaded_texels")},
           {"evaluations_per_s", r.at("evaluations_per_s")},
-          {"map_bytes", r.value("map_bytes", 0)},
+          {"map_bytes", r.value("map_bytes", json(nullptr))},
           {"gather", maps.at("settings").value("gather", json(nullptr))}};
 }
 
