@@ -54,6 +54,9 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
                                    {GL_GEOMETRY_SHADER, "dual_contouring/quads.geom"}},
                                   defines, {"tfPosition", "tfNormal", "tfVertex"}});
 
+  glNamedFramebufferParameteri(discardTarget_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, 1);
+  glNamedFramebufferParameteri(discardTarget_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, 1);
+  discardTarget_.checkComplete("dual contouring's attachment-less framebuffer");
   field_ = gpu::Texture::create3D(GL_R32F, n_, n_, n_);
   field_.setFilter(GL_LINEAR, GL_LINEAR);
   field_.setWrap(GL_CLAMP_TO_EDGE);
@@ -115,6 +118,9 @@ void GpuDualContouring::extract() {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
   // 2. Vertices of the active blocks' sign-changing cells.
+  GLint callerFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, discardTarget_.id());
   glEnable(GL_RASTERIZER_DISCARD);
   emptyVao_.bind();
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, drawCommand_.id());
@@ -159,6 +165,7 @@ void GpuDualContouring::extract() {
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   glBindVertexArray(0);
   glDisable(GL_RASTERIZER_DISCARD);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(callerFramebuffer));
   glQueryCounter(timerStop_.id(), GL_TIMESTAMP);
 }
 

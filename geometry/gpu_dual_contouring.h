@@ -33,8 +33,9 @@ class GpuDualContouring {
   static constexpr std::size_t kMaxPatchesPerCell = 4;
   /// Triangles per vertex: a closed quad mesh has ~1 quad (2 triangles) per vertex (Euler); 3 is slack.
   static constexpr std::size_t kTrianglesPerVertex = 3;
-  /// Total buffer memory cap; a lattice that would need more throws at construction.
-  static constexpr std::size_t kMaxBufferBytes = std::size_t{512} << 20;
+  /// Total buffer memory cap; a lattice that would need more throws at construction. 512³ (the
+  /// device bench's largest lattice, field.res's maximum) needs 1.66 GiB of buffers.
+  static constexpr std::size_t kMaxBufferBytes = std::size_t{2} << 30;
 
   /// Builds the programs and sizes every buffer for n³ samples (n ≥ 2). Needs a current GL 4.5
   /// context. Throws std::runtime_error when the buffers would exceed kMaxBufferBytes.
@@ -79,6 +80,11 @@ class GpuDualContouring {
   gpu::Buffer activeBlocks_, patchTable_, drawCommand_, vertexCounter_, vertexBuffer_, meshBuffer_;
   gpu::TransformFeedback vertexFeedback_, meshFeedback_;
   gpu::VertexArray emptyVao_, meshVao_;
+  /// Bound while passes 2 and 4 draw with the rasteriser discarding: a draw needs a complete
+  /// framebuffer even then, and a surfaceless EGL context has no default one
+  /// (GL_INVALID_FRAMEBUFFER_OPERATION, nothing extracted), so this one has no attachments and a
+  /// 1×1 default size (GL 4.3).
+  gpu::Framebuffer discardTarget_;
   gpu::Query vertexGenerated_, vertexWritten_, meshGenerated_, meshWritten_, timerStart_, timerStop_;
 };
 

@@ -87,6 +87,13 @@ void GlContext::loadGl(void* (*getProcAddress)(const char*), std::string_view ba
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(debugCallback, nullptr);
+  } else if (const char* errors = std::getenv("TALLOW_GL_ERRORS"); errors && std::string_view(errors) == "1") {
+    // Release builds too: GL errors only, reported asynchronously so that timings stay as they are.
+    // The device bench sets it: a first run on an unfamiliar driver must not fail silently.
+    glEnable(GL_DEBUG_OUTPUT);
+    glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_FALSE);
+    glDebugMessageControl(GL_DONT_CARE, GL_DEBUG_TYPE_ERROR, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+    glDebugMessageCallback(debugCallback, nullptr);
   }
 }
 

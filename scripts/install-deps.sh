@@ -21,6 +21,8 @@ packages=(
   gnuplot-nox
   # `tallow capture --video` and its test (ffprobe reads the video back)
   ffmpeg
+  # scripts/device_bundle.sh and its test: strip/objdump (binutils), the archive (tar, xz), `timeout`
+  binutils xz-utils tar coreutils
 )
 
 missing=()

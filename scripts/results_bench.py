@@ -3,6 +3,7 @@
 
   results_bench.py run DIR [--quick]          runs every experiment into DIR (TALLOW: the binary)
   results_bench.py report DIR MD IMAGES       appends the section to MD, copies figures to IMAGES
+  results_bench.py gpu FOLDER MD              appends the GPU section (issue 18) from FOLDER/results.md
 
 Called by scripts/results.sh; every number in the section comes from the JSON the runs write.
 The experiments follow the radiosity-maps paper: Figs. 6/8 (converged against the reference for
@@ -678,13 +679,56 @@ def report_peers(work, add, images, rel_images):
     add("")
 
 
+def report_gpu(folder, md):
+    """Issue 18: the section of a GPU run of the device bench (docs/device-bench.md). FOLDER holds the
+    results.md and results.json that bench.sh wrote on the GPU machine, copied here as they are; the
+    section includes that results.md under a heading naming the device. Without them, or when they
+    come from a software renderer, it says that no GPU figures exist yet."""
+    L = []
+    add = L.append
+    add("")
+    add("## On a GPU (issue 18)")
+    add("")
+    results_md = os.path.join(folder, "results.md")
+    results_json = os.path.join(folder, "results.json")
+    gpu = None
+    if os.path.exists(results_md) and os.path.exists(results_json):
+        gpu = load(results_json)
+        if gpu["device"].get("software"):
+            gpu = None
+    rel = os.path.relpath(folder, os.path.dirname(os.path.abspath(md)))
+    if gpu is None:
+        add("**No GPU figures exist yet: every time in this file is llvmpipe's**, a software rasteriser on this CPU.")
+        add("The device bench measures a real GPU in one run of at most 8 minutes: `scripts/device_bundle.sh` packs")
+        add("Tallow with its libraries, and its `bench.sh` writes `results.md` and `results.json` there")
+        add("(docs/device-bench.md). Copied into `%s/` beside this file, they become this section when RESULTS is" % rel)
+    add("regenerated.")
+    else:
+        dev = gpu["device"]
+        name = dev.get("nvidia_smi_name") or dev.get("GL_RENDERER")
+        add("Measured on **%s** (`%s`, OpenGL %s, driver %s) by the device bench (docs/device-bench.md), mode `%s`,"
+            % (name, dev.get("GL_RENDERER"), dev.get("GL_VERSION"), dev.get("nvidia_smi_driver") or "—",
+               gpu["meta"].get("mode")))
+        add("Tallow %s; its `results.md` and `results.json` are in `%s/` beside this file. The run's report follows, headings"
+            % ((gpu.get("bundle") or {}).get("commit", "—"), rel))
+        add("two levels down.")
+        add("")
+        with open(results_md) as f:
+            for line in f.read().splitlines():
+                add("##" + line if line.startswith("#") else line)
+    with open(md, "a") as f:
+        f.write("\n".join(L) + "\n")
+
+
 def main(argv):
     if len(argv) >= 2 and argv[0] == "run":
         run(argv[1], "--quick" in argv[2:])
     elif len(argv) == 4 and argv[0] == "report":
         report(argv[1], argv[2], argv[3])
+    elif len(argv) == 3 and argv[0] == "gpu":
+        report_gpu(argv[1], argv[2])
     else:
-        sys.exit("usage: results_bench.py run DIR [--quick] | report DIR MD IMAGES")
+        sys.exit("usage: results_bench.py run DIR [--quick] | report DIR MD IMAGES | gpu FOLDER MD")
 
 
 if __name__ == "__main__":

@@ -284,9 +284,9 @@ TEST(MeshFieldCli, ErrorsAreOneLineAndWriteNothing) {
        "preset \"bunny\" has no field objects \\(objects with a \"field\": blob, candle or mesh\\)"},
       {{"mesh", "--preset", "bunny", "--out", out},
        "preset \"bunny\" has no field objects \\(objects with a \"field\": blob, candle or mesh\\)"},
-      {{"mesh", "--preset", "blob", "--res", "8", "--out", out}, "--res: field\\.res: 8 is out of range \\[16, 256\\]"},
+      {{"mesh", "--preset", "blob", "--res", "8", "--out", out}, "--res: field\\.res: 8 is out of range \\[16, 512\\]"},
       {{"mesh", "--preset", "blob", "--res", "999", "--cpu", "--out", out},
-       "--res: field\\.res: 999 is out of range \\[16, 256\\]"},
+       "--res: field\\.res: 999 is out of range \\[16, 512\\]"},
       {{"mesh", "--preset", "blob", "--out", d + "/no/such/m.ply"}, "--out: folder .*/no/such does not exist"},
   };
   for (const auto& c : cases) {

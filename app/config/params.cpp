@@ -203,7 +203,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                    [](auto& c) -> auto& { return c.render.specular; }));
   r.add(bind<int>(withDefault(declare("field.res", "int", "samples per axis",
                                       "Lattice resolution of field objects, isosurfaced on the GPU every frame.", 16,
-                                      256),
+                                      512),
                               64),
                   [](auto& c) -> auto& { return c.render.fieldRes; }));
 
