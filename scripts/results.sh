@@ -5,7 +5,9 @@
 # K (maps) and N (samples) on the bunny; and of the issue-6 experiments (scripts/results_bench.py:
 # `tallow bench` against `tallow reference`, `tallow capture` for occupancy and coverage) and the
 # issue-7 experiments (VPLs against the reference's emergent light, their cost, flicker) and the
-# issue-8 comparison of the four methods (radiosity maps, no-cache, SSLPV, image-space). Every
+# issue-8 comparison of the four methods (radiosity maps, no-cache, SSLPV, image-space); and of
+# `tallow probe placement` (issue 16, point 4: dual contouring's vertex placements against the exact
+# surface, scripts/results_placement.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -32,6 +34,8 @@ kept() { [ "${TALLOW_RESULTS_RESUME:-0}" = "1" ] && [ -s "$1" ]; }
 
 echo "results: tallow probe extraction (blob, candle; 64, 128, 256; $repeats repeats)"
 kept "$work/extraction.json" || "$tallow" probe extraction --fields blob,candle --res 64,128,256 --repeats "$repeats" --out "$work/extraction.json"
+echo "results: tallow probe placement (cube, candle, sphere, blob; 32, 64, 128; $maps_repeats repeats)"
+kept "$work/placement.json" || "$tallow" probe placement --shapes cube,candle,sphere,blob --res 32,64,128 --repeats "$maps_repeats" --out "$work/placement.json"
 echo "results: tallow probe maps (bunny; K 4, 8, 16; N 1, 4, 8; 256² maps; $maps_repeats repeats)"
 kept "$work/maps.json" || "$tallow" probe maps --preset bunny --k 4,8,16 --n 1,4,8 --map-size 256 --repeats "$maps_repeats" --out "$work/maps.json"
 for gather in fragment compute; do
@@ -201,6 +205,7 @@ with open(dst, "w") as f:
     f.write("\n".join(lines) + "\n")
 PY
 python3 "$root/scripts/results_bench.py" report "$work/bench" "$root/docs/RESULTS.md.tmp" "$root/docs/images/results"
+python3 "$root/scripts/results_placement.py" "$work/placement.json" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"
 # Pictures of earlier runs that this RESULTS.md no longer shows go.
 for f in "$root/docs/images/results"/*; do

@@ -52,8 +52,11 @@ std::vector<PlannedPass> Renderer::plan(const Scene& scene, const RenderSettings
     for (const SceneObject& o : scene.objects) n += o.shape == ShapeKind::Field ? 1 : 0;
     passes.push_back({"field.sample", std::to_string(n) + " field object(s) at a new time: sampled on the CPU on a " +
                                           std::to_string(settings.fieldRes) + "^3 lattice and uploaded"});
-    passes.push_back({"field.extract", "GPU dual contouring (surface nets) of the uploaded lattice(s) into "
-                                       "transform-feedback buffers"});
+    passes.push_back({"field.extract", "GPU dual contouring (vertices at the " +
+                                           std::string(settings.fieldPlacement == geometry::VertexPlacement::Qef
+                                                           ? "tangent planes' quadric minimum"
+                                                           : "edge crossings' mass point") +
+                                           ") of the uploaded lattice(s) into transform-feedback buffers"});
   }
   int dirShadowed = 0, pointShadowed = 0;
   for (const Light& l : scene.lights)
@@ -119,7 +122,7 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
 std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSettings& settings, double timeS,
                                              const std::string& mapStateKey) const {
   std::vector<PlannedPass> passes = plan(scene, settings);
-  if (!fields_->stale(timeS, settings.fieldRes))
+  if (!fields_->stale(timeS, settings.fieldRes, settings.fieldPlacement))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name.rfind("field.", 0) == 0; });
   // Converged: nothing the maps depend on changed and F reached sss.frames; only step 3 runs.
   if (maps_ && RadiosityMaps::applies(scene, settings) && !maps_->needsUpdate(mapStateKey, settings))
@@ -135,7 +138,7 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& scene, const RenderSet
   // The VPLs read the maps and the geometry: nothing to redo while both hold, unless the directions
   // change every frame.
   if (vpls_ && vpls_->count() == settings.vpl.count && settings.vpl.stable && fields_ &&
-      !fields_->stale(timeS, settings.fieldRes) && maps_ && !maps_->needsUpdate(mapStateKey, settings) &&
+      !fields_->stale(timeS, settings.fieldRes, settings.fieldPlacement) && maps_ && !maps_->needsUpdate(mapStateKey, settings) &&
       vplKey_ == vplKey(settings, mapStateKey))
     std::erase_if(passes, [](const PlannedPass& p) { return p.name == "vpl"; });
   // SSLPV is deterministic: while its inputs hold, its grids are what a recomputation would give.
@@ -203,7 +206,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   for (const PlannedPass& pass : planFrame(scene, settings, timeS, key)) {
     gpu::GpuScope scope(timer_, pass.name);
     if (pass.name == "field.sample") {
-      fields_->sample(timeS, settings.fieldRes, geometry_);
+      fields_->sample(timeS, settings.fieldRes, settings.fieldPlacement, geometry_);
       geometry_.update(scene);
     } else if (pass.name == "field.extract") {
       fields_->extract();

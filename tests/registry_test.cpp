@@ -139,6 +139,17 @@ TEST_F(RegistryTest, BoolAndEnum) {
   EXPECT_EQ(setError("render.tonemap", 2), "render.tonemap: expected a string, got 2");
 }
 
+TEST_F(RegistryTest, FieldPlacementIsAnEnumDefaultingToTheExtractorsDefault) {
+  EXPECT_EQ(config.render.fieldPlacement, geometry::kDefaultPlacement);
+  EXPECT_EQ(registry.find("field.placement")->choices, (std::vector<std::string>{"qef", "mass"}));
+  registry.set(config, "field.placement", "mass");
+  EXPECT_EQ(config.render.fieldPlacement, geometry::VertexPlacement::Mass);
+  registry.set(config, "field.placement", "qef");
+  EXPECT_EQ(config.render.fieldPlacement, geometry::VertexPlacement::Qef);
+  EXPECT_EQ(setError("field.placement", "qfe"),
+            "field.placement: unknown value \"qfe\" (did you mean \"qef\"?); choices: qef, mass");
+}
+
 TEST_F(RegistryTest, Vec3ChecksShapeAndEachComponent) {
   EXPECT_EQ(setError("ambient", json::array({1, 2})), "ambient: expected an array of 3 numbers, got [1,2]");
   EXPECT_EQ(setError("ambient", json::array({1, "2", 3})), "ambient: expected an array of 3 numbers, got [1,\"2\",3]");

@@ -206,6 +206,21 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       256),
                               64),
                   [](auto& c) -> auto& { return c.render.fieldRes; }));
+  {
+    Param p = withDefault(
+        declare("field.placement", "enum", "",
+                "Where dual contouring puts each surface patch's vertex in its lattice cell: qef (the minimum of the "
+                "squared distances to the tangent planes at the patch's edge crossings, regularised toward their "
+                "mean as a probabilistic quadric, kept in the cell: sharp edges and corners stay sharp) or mass (the "
+                "mean of the edge crossings, surface nets: rounds them off by up to half a cell)."),
+        std::string(geometry::vertexPlacementName(geometry::kDefaultPlacement)));
+    p.choices = {"qef", "mass"};
+    p.getter = [](const Config& c) { return json(std::string(geometry::vertexPlacementName(c.render.fieldPlacement))); };
+    p.setter = [](Config& c, const json& v) {
+      c.render.fieldPlacement = geometry::parseVertexPlacement(v.get<std::string>());
+    };
+    r.add(std::move(p));
+  }
 
   // --- Subsurface scattering (issue 5; Dal Corso et al. 2017, "the paper" below) -----------------
   {

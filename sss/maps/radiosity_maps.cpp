@@ -229,7 +229,7 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
 std::string RadiosityMaps::stateKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS) {
   // Hexadecimal floats: exact, so any change of any input changes the key.
   std::ostringstream k;
-  k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';';
+  k << std::hexfloat << fieldTimeS << ';' << settings.fieldRes << ';' << static_cast<int>(settings.fieldPlacement) << ';';
   const SssSettings& s = settings.sss;
   k << static_cast<int>(s.model) << ',' << s.maps << ',' << s.samples << ',' << s.mapSize << ',' << s.lightMapSize
     << ',' << s.stereographic << ',' << s.computeGather << ',' << s.lightMapAuto << ',' << s.projectedArea << ',' << s.texelPlane << ';';

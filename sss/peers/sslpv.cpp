@@ -97,7 +97,7 @@ void Sslpv::checkLimits(const Scene& scene, const RenderSettings& settings) {
 std::string Sslpv::mediumKey(const Scene& scene, const RenderSettings& settings, double fieldTimeS) {
   // Hexadecimal floats: exact, so any change of any input changes the key.
   std::ostringstream k;
-  k << std::hexfloat << "sslpv medium;" << fieldTimeS << ';' << settings.fieldRes << ';' << settings.sslpv.grid << ';';
+  k << std::hexfloat << "sslpv medium;" << fieldTimeS << ';' << settings.fieldRes << ';' << static_cast<int>(settings.fieldPlacement) << ';' << settings.sslpv.grid << ';';
   for (const SceneObject& o : scene.objects) {
     const Transform& t = o.transform;
     k << o.translucent << ',' << t.position.x << ',' << t.position.y << ',' << t.position.z << ',' << t.rotationDeg.x
