@@ -133,10 +133,12 @@ TEST_F(RegistryTest, BoolAndEnum) {
   registry.set(config, "render.tonemap", "reinhard");
   EXPECT_EQ(config.render.toneMap.op, gpu::ToneMap::Reinhard);
   EXPECT_EQ(setError("render.tonemap", "acse"),
-            "render.tonemap: unknown value \"acse\" (did you mean \"aces\"?); choices: clamp, reinhard, aces");
+            "render.tonemap: unknown value \"acse\" (did you mean \"aces\"?); choices: clamp, reinhard, aces, hue-preserving");
   EXPECT_EQ(setError("render.tonemap", "filmic"),
-            "render.tonemap: unknown value \"filmic\"; choices: clamp, reinhard, aces");
+            "render.tonemap: unknown value \"filmic\"; choices: clamp, reinhard, aces, hue-preserving");
   EXPECT_EQ(setError("render.tonemap", 2), "render.tonemap: expected a string, got 2");
+  registry.set(config, "render.tonemap", "hue-preserving");
+  EXPECT_EQ(config.render.toneMap.op, gpu::ToneMap::HuePreserving);
 }
 
 TEST_F(RegistryTest, FieldPlacementIsAnEnumDefaultingToTheExtractorsDefault) {

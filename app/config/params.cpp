@@ -184,9 +184,14 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                               1),
                   [](auto& c) -> auto& { return c.render.pcfRadius; }));
   {
-    Param p = withDefault(declare("render.tonemap", "enum", "", "Tone-mapping operator of PNG and window output."),
+    Param p = withDefault(declare("render.tonemap", "enum", "",
+                                  "Tone-mapping operator of PNG and window output: clamp (clip to [0, 1]), reinhard "
+                                  "(c / (1 + c) per channel), aces (Narkowicz's fit of the ACES filmic curve, per "
+                                  "channel) or hue-preserving (a sigmoid of log luminance that keeps each colour's "
+                                  "hue and takes very bright colours to white instead of clipping a channel; "
+                                  "shaders/common/tonemap.glsl)."),
                           "aces");
-    p.choices = {"clamp", "reinhard", "aces"};
+    p.choices = {"clamp", "reinhard", "aces", "hue-preserving"};
     p.getter = [](const Config& c) { return json(std::string(gpu::toneMapName(c.render.toneMap.op))); };
     p.setter = [](Config& c, const json& v) { c.render.toneMap.op = gpu::parseToneMap(v.get<std::string>()); };
     r.add(std::move(p));
