@@ -31,8 +31,9 @@ def section(r):
     add("")
     add("`field.placement`: `mass` puts each surface patch's vertex at the mean of its cell's edge crossings")
     add("(surface nets); `qef` at the minimum of the squared distances to the tangent planes at those crossings")
-    add("(normals: the lattice's central-difference gradient, interpolated along each edge), regularised toward")
-    add("the mass point as a probabilistic quadric (Trettner and Kobbelt 2020) and kept inside the cell")
+    add("(normals from the lattice alone: along the edge its own difference, across it a central difference, or a")
+    add("one-sided one where the central stencil straddles a crease), regularised toward the mass point as a")
+    add("probabilistic quadric (Trettner and Kobbelt 2020) and kept inside the cell")
     add("(`shaders/dual_contouring/qef.glsl`). Each shape is sampled on the lattice, extracted on the GPU with")
     add("both placements, and compared with its exact surface. Distances are in cells of the lattice:")
     add("mesh → surface at every triangle's vertices, edge midpoints and centroid (mean weighted by area),")
@@ -51,6 +52,7 @@ def section(r):
         add("**A software rasteriser: the times only compare the two placements on this CPU.**")
     add("")
     ratios = {"sharp": [], "smooth": []}
+    means = {"sharp": [], "smooth": []}
     costs = []
     wins = {"sharp": [0, 0], "smooth": [0, 0]}  # QEF lower, cases
     for shape in r["shapes"]:
@@ -71,6 +73,7 @@ def section(r):
                     m["zero_area_triangles"], m["against_gradient"], fmt(m["gpu_extract_ms"], 2)))
             q = row["qef_over_mass"]
             ratios[kind].append(q["hausdorff"])
+            means[kind] += [q["mesh_to_surface_mean"], q["surface_to_mesh_mean"]]
             costs.append(q["gpu_extract"])
             wins[kind][1] += 1
             wins[kind][0] += 1 if row["qef"]["hausdorff_cells"] < row["mass"]["hausdorff_cells"] else 0
@@ -81,11 +84,14 @@ def section(r):
         g = geomean(ratios[kind])
         if g is None:
             continue
-        add("- %s shapes: QEF's Hausdorff distance is %s× the mass point's (geometric mean over %d cases); lower in %d of %d."
-            % (kind.capitalize(), fmt(g, 2), len([x for x in ratios[kind] if x]), wins[kind][0], wins[kind][1]))
+        add("- %s shapes: QEF's Hausdorff distance is %s× the mass point's (geometric mean over %d cases), lower in"
+            " %d of %d; its mean distances (both directions) %s× the mass point's."
+            % (kind.capitalize(), fmt(g, 2), len([x for x in ratios[kind] if x]), wins[kind][0], wins[kind][1],
+               fmt(geomean(means[kind]), 2)))
     c = geomean(costs)
     if c is not None:
-        add("- Cost: the QEF's extraction takes %s× the mass point's (geometric mean over every case)." % fmt(c, 2))
+        add("- Cost: the QEF's extraction takes %s× the mass point's (geometric mean over every case; GL timestamps," % fmt(c, 2))
+        add("  so on a software rasteriser also the CPU's load at the time).")
     add("- Default (`field.placement`, `geometry::kDefaultPlacement`): `%s`." % r["default_placement"])
     add("")
     add("Rerun: `tallow probe placement --shapes %s --res %s --repeats %d --out placement.json`."

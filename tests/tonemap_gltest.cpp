@@ -55,9 +55,10 @@ TEST(ToneMapGL, DisplayShaderAgreesWithTheCppToneMapAtFloatPrecision) {
       }
       std::printf("[ tonemap ] %s at %+.1f EV: largest |GPU - C++| %.2e\n",
                   std::string(gpu::toneMapName(op)).c_str(), ev, worst);
-      // The same float operations on both sides; pow, exp2 and inversesqrt may differ by a few ulps
-      // between the driver and libm, which the sRGB curve's slope (≤ 12.92) turns into at most ~1e-5.
-      EXPECT_LT(worst, 2e-5) << gpu::toneMapName(op) << " at " << ev << " EV";
+      // The same float operations on both sides; pow, exp2 and inversesqrt may differ by a few units in
+      // the last place between the driver and libm (measured on llvmpipe: at most 2.4e-7, four units
+      // at 1); the bound is about eight times that.
+      EXPECT_LT(worst, 2e-6) << gpu::toneMapName(op) << " at " << ev << " EV";
     }
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }

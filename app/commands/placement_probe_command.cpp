@@ -290,6 +290,7 @@ int runProbePlacement(const ProbePlacementOptions& o) {
     const Shape shape = makeShape(name);
     std::printf("%-6s reference ready in %.1f s%s\n", name.c_str(), msSince(t0) * 1e-3,
                 shape.exact ? " (exact)" : "");
+    std::fflush(stdout);
     nlohmann::json rows = nlohmann::json::array();
     for (int n : o.resolutions) {
       const geometry::SampledLattice lattice = geometry::sampleField(*shape.field, n);
@@ -331,6 +332,7 @@ int runProbePlacement(const ProbePlacementOptions& o) {
                     "mean %.4f)  %zu tris, bad edges %zu, zero-area %zu, against gradient %zu  extract %.2f ms\n",
                     name.c_str(), n, key.c_str(), hausdorff, d.meshMax, d.meshMean, d.surfaceMax, d.surfaceMean,
                     mesh.triangles.size(), c.badEdges, c.zeroArea, c.againstGradient, median(gpuMs));
+        std::fflush(stdout);
       }
       const auto ratio = [&](const char* k) {
         const double mass = row["mass"][k].get<double>();
@@ -346,8 +348,9 @@ int runProbePlacement(const ProbePlacementOptions& o) {
                       {"description", shape.description},
                       {"sharp", shape.sharp},
                       {"reference",
-                       shape.exact ? nlohmann::json("exact: |value| of the signed distance; surface samples every " +
-                                                    std::to_string(kExactSpacingCells) + " cell")
+                       shape.exact ? nlohmann::json("exact: |value| of the signed distance; surface samples " +
+                                                    std::to_string(static_cast<int>(kExactSpacingCells * 100.0)) +
+                                                    "% of a cell apart")
                                    : nlohmann::json("OpenVDB mesh of a " + std::to_string(kReferenceSamples) +
                                                     "^3 lattice, vertices projected onto the zero set (" +
                                                     std::to_string(shape.reference.triangles.size()) + " triangles, " +
