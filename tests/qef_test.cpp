@@ -161,5 +161,22 @@ TEST(DcQef, LatticeDerivativeIsCentralOnSmoothSamplesAndOneSidedAtACrease) {
   EXPECT_NEAR(glsl::dcLatticeDerivative(-4.0f, -2.0f, 0.0f, 2.0f, 4.0f), 2.0f, 1e-6f);
 }
 
+// The lattice's own surface: for a cell whose corner values are a plane's field f = x − 0.3 the
+// trilinear interpolant is that plane, and the first-order distance is exact. A vertex 0.65 from it
+// is brought back along the segment from the mass point to where it is 0.5 away (x = 0.8), to the
+// bisection's 1/256 of the 0.65-long segment; one within 0.5 stays.
+TEST(DcQef, VertexIsKeptWithinHalfACellOfTheLatticesSurface) {
+  float v[8];
+  for (int i = 0; i < 8; ++i) v[i] = static_cast<float>(i & 1) - 0.3f;
+  EXPECT_NEAR(glsl::dcTrilinearDistance(v, glm::vec3(0.9f, 0.2f, 0.7f)), 0.6f, 1e-6f);
+  const glm::vec3 m(0.3f, 0.5f, 0.5f);
+  const glm::vec3 limited = glsl::dcLimitToLattice(v, m, glm::vec3(0.95f, 0.5f, 0.5f));
+  EXPECT_LE(limited.x, 0.8f + 1e-6f);
+  EXPECT_GE(limited.x, 0.8f - 0.65f / 256.0f - 1e-6f);
+  EXPECT_FLOAT_EQ(limited.y, 0.5f);
+  const glm::vec3 near(0.75f, 0.1f, 0.9f);
+  EXPECT_EQ(glsl::dcLimitToLattice(v, m, near), near);
+}
+
 }  // namespace
 }  // namespace tallow

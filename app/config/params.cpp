@@ -217,7 +217,8 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                 "Where dual contouring puts each surface patch's vertex in its lattice cell: qef (the minimum of the "
                 "squared distances to the tangent planes at the patch's edge crossings, regularised toward their "
                 "mean as a probabilistic quadric, kept in the cell: sharp edges and corners stay sharp) or mass (the "
-                "mean of the edge crossings, surface nets: rounds them off by up to half a cell)."),
+                "mean of the edge crossings, surface nets: rounds them off, edges about half a cell deep and corners up "
+                "to a cell)."),
         std::string(geometry::vertexPlacementName(geometry::kDefaultPlacement)));
     p.choices = {"qef", "mass"};
     p.getter = [](const Config& c) { return json(std::string(geometry::vertexPlacementName(c.render.fieldPlacement))); };

@@ -4,9 +4,10 @@
 // 1998), or, built with DC_QEF, at the minimum of the probabilistic quadric of their tangent planes
 // kept inside the cell (qef.glsl; the normal at a crossing is the lattice's gradient there,
 // crossingGradient below); then the face vertices the cell owns; normal = normalised field
-// gradient by central differences on the texture. Captured by transform feedback as (position, normal, cell, bits); the vertices of a
-// cell are consecutive (one invocation emits them in order). The counter also builds the indirect
-// dispatch of the index-map pass (one work group per 64 vertices).
+// gradient by central differences on the texture. Captured by transform feedback as (position,
+// normal, cell, bits); the vertices of a cell are consecutive (one invocation emits them in order).
+// The counter also builds the indirect dispatch of the index-map pass (one work group per 64
+// vertices).
 #include "dual_contouring/lattice.glsl"
 #include "dual_contouring/patches.glsl"
 #ifdef DC_QEF
@@ -137,7 +138,7 @@ void main() {
   int cell = cellIndex(c);
   for (int p = 0; p < count; ++p) {
 #ifdef DC_QEF
-    vec3 inCell = dcQuadricVertex(quadric[p], DC_QEF_SIGMA_N);
+    vec3 inCell = dcLimitToLattice(v, dcQuadricMassPoint(quadric[p]), dcQuadricVertex(quadric[p], DC_QEF_SIGMA_N));
 #else
     vec3 inCell = sum[p] / crossings[p];
 #endif
