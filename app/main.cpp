@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
   costCmd->add_option("--out", cost.out, "JSON file")->required();
 
   tallow::app::ProbeExtractionOptions extraction;
-  auto* extractionCmd = probeCmd->add_subcommand("extraction", "isosurface extraction benchmark: GPU surface nets vs OpenVDB");
+  auto* extractionCmd = probeCmd->add_subcommand("extraction", "isosurface extraction benchmark: GPU dual contouring vs OpenVDB");
   extractionCmd->add_option("--fields", extraction.fields, "fields: blob,candle")->delimiter(',');
   extractionCmd->add_option("--res", extraction.resolutions, "samples per axis, each in [16, 256]")->delimiter(',');
   extractionCmd->add_option("--repeats", extraction.repeats, "timed repeats after one warm-up; the median is reported");

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates docs/RESULTS.md from fresh runs of `tallow probe extraction` (issue 4, point 8):
-# GPU surface nets against OpenVDB's CPU mesher at 64³, 128³ and 256³ for the blob and the candle;
+# GPU dual contouring against OpenVDB's CPU mesher at 64³, 128³ and 256³ for the blob and the candle;
 # and of `tallow probe maps` (issue 5, point 9): the cost of the scattered radiosity maps against
 # K (maps) and N (samples) on the bunny; and of the issue-6 experiments (scripts/results_bench.py:
 # `tallow bench` against `tallow reference`, `tallow capture` for occupancy and coverage) and the
@@ -92,7 +92,8 @@ if software:
 add("Timings are medians of %d runs after one warm-up, on a machine shared with other builds, so they" % r["repeats"])
 add("are noisy. Each field is sampled once on the CPU per resolution (`sample`); the GPU path and")
 add("OpenVDB's `volumeToMesh` then contour exactly the same lattice. `GPU` is the span between")
-add("GL_TIMESTAMP queries around `extract()` (four passes, %d³-cell blocks), `GPU wall` is `extract()` +" % r["block_cells"])
+add("GL_TIMESTAMP queries around `extract()` (four passes, %d³-cell blocks, vertices placed by `field.placement=%s`)," % (r["block_cells"], r.get("placement", "mass")))
+add("`GPU wall` is `extract()` +")
 add("`glFinish()` on the CPU clock; the upload of the lattice into the 3D texture is excluded from both and")
 add("listed on its own. `CPU` is OpenVDB's mesher plus per-vertex gradient normals. Triangles per second")
 add("use the GPU timestamp span and the CPU time respectively. Buffer memory is everything the GPU path")
