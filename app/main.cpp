@@ -8,6 +8,7 @@
 #include "app/commands/capture_command.h"
 #include "app/commands/cost_command.h"
 #include "app/commands/extraction_bench_command.h"
+#include "app/commands/placement_probe_command.h"
 #include "app/commands/field_command.h"
 #include "app/commands/maps_bench_command.h"
 #include "app/commands/mesh_command.h"
@@ -151,12 +152,21 @@ int main(int argc, char** argv) {
   costCmd->add_option("--out", cost.out, "JSON file")->required();
 
   tallow::app::ProbeExtractionOptions extraction;
-  auto* extractionCmd = probeCmd->add_subcommand("extraction", "isosurface extraction benchmark: GPU surface nets vs OpenVDB");
+  auto* extractionCmd = probeCmd->add_subcommand("extraction", "isosurface extraction benchmark: GPU dual contouring vs OpenVDB");
   extractionCmd->add_option("--fields", extraction.fields, "fields: blob,candle")->delimiter(',');
   extractionCmd->add_option("--res", extraction.resolutions, "samples per axis, each in [16, 256]")->delimiter(',');
   extractionCmd->add_option("--repeats", extraction.repeats, "timed repeats after one warm-up; the median is reported");
   extractionCmd->add_option("--gl", extraction.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
   extractionCmd->add_option("--out", extraction.out, "JSON file")->required();
+
+  tallow::app::ProbePlacementOptions placement;
+  auto* placementCmd = probeCmd->add_subcommand(
+      "placement", "dual contouring's vertex placements (mass, qef) against the exact surface: Hausdorff distances");
+  placementCmd->add_option("--shapes", placement.shapes, "shapes: cube,candle,sphere,blob")->delimiter(',');
+  placementCmd->add_option("--res", placement.resolutions, "samples per axis, each in [16, 256]")->delimiter(',');
+  placementCmd->add_option("--repeats", placement.repeats, "timed extractions after one warm-up; the median is reported");
+  placementCmd->add_option("--gl", placement.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+  placementCmd->add_option("--out", placement.out, "JSON file")->required();
 
   tallow::app::ProbeMapsOptions mapsBench;
   auto* mapsBenchCmd = probeCmd->add_subcommand("maps", "cost of the scattered radiosity maps against K and N");
@@ -210,6 +220,7 @@ int main(int argc, char** argv) {
     if (*profileCmd) return tallow::app::runProbeProfile(profile);
     if (*costCmd) return tallow::app::runProbeCost(cost);
     if (*extractionCmd) return tallow::app::runProbeExtraction(extraction);
+    if (*placementCmd) return tallow::app::runProbePlacement(placement);
     if (*mapsBenchCmd) return tallow::app::runProbeMaps(mapsBench);
     if (*meshCmd) return tallow::app::runMesh(mesh);
     if (*fieldCmd) return tallow::app::runField(field);

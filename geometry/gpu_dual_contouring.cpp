@@ -22,7 +22,8 @@ GLuint groupsFor(std::size_t items) { return static_cast<GLuint>((items + kWorkG
 
 }  // namespace
 
-GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis) : n_(samplesPerAxis) {
+GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis, VertexPlacement placement)
+    : n_(samplesPerAxis), placement_(placement) {
   if (n_ < 2) throw std::runtime_error("GpuDualContouring: need at least 2 samples per axis, got " + std::to_string(n_));
   const std::size_t cells = static_cast<std::size_t>(n_ - 1);
   blocks_ = (n_ - 1 + kBlockCells - 1) / kBlockCells;
@@ -35,10 +36,12 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
                              std::to_string(kMaxBufferBytes >> 20) + " MiB cap");
 
   const std::vector<std::string> defines{blockDefine()};
+  std::vector<std::string> vertexDefines = defines;
+  if (placement_ == VertexPlacement::Qef) vertexDefines.emplace_back("DC_QEF");
   classify_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/classify.comp"}}, defines});
   vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
                                       {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
-                                     defines, {"tfPosition", "tfNormal", "tfCell", "tfBits"}});
+                                     vertexDefines, {"tfPosition", "tfNormal", "tfCell", "tfBits"}});
   indexMap_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/index_map.comp"}}, defines});
   // The patches of every sign configuration, by the shaders' own cellPatches(): built once here.
   patchTable_ = gpu::Buffer(256 * sizeof(GLuint));

@@ -3,10 +3,11 @@
 // SampledLattice uploaded as a GL_R32F 3D texture. Four passes, all on the GPU:
 //   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
 //      indirect draw command (instances = active blocks);
-//   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (mean
-//      of the patch's edge crossings; usually one patch, up to four where a face is ambiguous,
-//      see shaders/dual_contouring/patches.glsl), normal from the texture's gradient, captured by
-//      transform feedback;
+//   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (usually
+//      one patch, up to four where a face is ambiguous, see shaders/dual_contouring/patches.glsl),
+//      placed by `VertexPlacement`: the mean of the patch's edge crossings, or the minimum of the
+//      probabilistic quadric of their tangent planes kept in the cell (qef.glsl); normal from the
+//      texture's gradient, captured by transform feedback;
 //   3. index_map.comp: first vertex of each cell (emission order) → GL_R32I 3D index map,
 //      dispatched indirectly;
 //   4. cells.vert + quads.geom: two triangles per sign-changing edge, outward winding, captured by
@@ -14,6 +15,7 @@
 // Nothing is read back in extract() or draw(); the query-based accessors are for tests and stats.
 #include "geometry/grid_sampler.h"
 #include "geometry/triangle_mesh.h"
+#include "geometry/vertex_placement.h"
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
 #include "gpu/shader_library.h"
@@ -37,9 +39,11 @@ class GpuDualContouring {
   /// device bench's largest lattice, field.res's maximum) needs 1.66 GiB of buffers.
   static constexpr std::size_t kMaxBufferBytes = std::size_t{2} << 30;
 
-  /// Builds the programs and sizes every buffer for n³ samples (n ≥ 2). Needs a current GL 4.5
-  /// context. Throws std::runtime_error when the buffers would exceed kMaxBufferBytes.
-  GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis);
+  /// Builds the programs and sizes every buffer for n³ samples (n ≥ 2), placing vertices by
+  /// `placement`. Needs a current GL 4.5 context. Throws std::runtime_error when the buffers would
+  /// exceed kMaxBufferBytes.
+  GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis,
+                    VertexPlacement placement = kDefaultPlacement);
 
   /// Copies `lattice` into the GL_R32F 3D texture (n must match the constructor's).
   void upload(const SampledLattice& lattice);
@@ -67,9 +71,11 @@ class GpuDualContouring {
   std::size_t vertexCapacity() const { return vertexCapacity_; }
   std::size_t triangleCapacity() const { return triangleCapacity_; }
   std::size_t bufferBytes() const;     ///< GPU memory of buffers, texture and index map
+  VertexPlacement placement() const { return placement_; }
 
  private:
   int n_ = 0, blocks_ = 0;
+  VertexPlacement placement_ = kDefaultPlacement;
   std::size_t vertexCapacity_ = 0, triangleCapacity_ = 0;
   glm::vec3 origin_{0.0f};
   float cellSize_ = 0.0f;

@@ -15,13 +15,18 @@ glm::vec3 toneMapToSrgb(const glm::vec3& radiance, const ToneMapSettings& settin
   return glsl::toneMapToSrgb(radiance, std::exp2(settings.exposureEv), static_cast<int>(settings.op));
 }
 
+glm::vec3 toneMapLinear(const glm::vec3& radiance, const ToneMapSettings& settings) {
+  return glsl::toneMapLinear(radiance, std::exp2(settings.exposureEv), static_cast<int>(settings.op));
+}
+
 float srgbEncode(float linear) { return glsl::srgbEncode(linear); }
 
 ToneMap parseToneMap(std::string_view name) {
   if (name == "clamp") return ToneMap::Clamp;
   if (name == "reinhard") return ToneMap::Reinhard;
   if (name == "aces") return ToneMap::Aces;
-  throw std::invalid_argument("unknown tone map \"" + std::string(name) + "\" (clamp, reinhard, aces)");
+  if (name == "hue-preserving") return ToneMap::HuePreserving;
+  throw std::invalid_argument("unknown tone map \"" + std::string(name) + "\" (clamp, reinhard, aces, hue-preserving)");
 }
 
 std::string_view toneMapName(ToneMap op) {
@@ -29,6 +34,7 @@ std::string_view toneMapName(ToneMap op) {
     case ToneMap::Clamp: return "clamp";
     case ToneMap::Reinhard: return "reinhard";
     case ToneMap::Aces: return "aces";
+    case ToneMap::HuePreserving: return "hue-preserving";
   }
   return "?";
 }

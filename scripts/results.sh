@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Regenerates docs/RESULTS.md from fresh runs of `tallow probe extraction` (issue 4, point 8):
-# GPU surface nets against OpenVDB's CPU mesher at 64³, 128³ and 256³ for the blob and the candle;
+# GPU dual contouring against OpenVDB's CPU mesher at 64³, 128³ and 256³ for the blob and the candle;
 # and of `tallow probe maps` (issue 5, point 9): the cost of the scattered radiosity maps against
 # K (maps) and N (samples) on the bunny; and of the issue-6 experiments (scripts/results_bench.py:
 # `tallow bench` against `tallow reference`, `tallow capture` for occupancy and coverage) and the
 # issue-7 experiments (VPLs against the reference's emergent light, their cost, flicker) and the
-# issue-8 comparison of the four methods (radiosity maps, no-cache, SSLPV, image-space). Every
+# issue-8 comparison of the four methods (radiosity maps, no-cache, SSLPV, image-space); and of
+# `tallow probe placement` (issue 16, point 4: dual contouring's vertex placements against the exact
+# surface, scripts/results_placement.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -32,6 +34,8 @@ kept() { [ "${TALLOW_RESULTS_RESUME:-0}" = "1" ] && [ -s "$1" ]; }
 
 echo "results: tallow probe extraction (blob, candle; 64, 128, 256; $repeats repeats)"
 kept "$work/extraction.json" || "$tallow" probe extraction --fields blob,candle --res 64,128,256 --repeats "$repeats" --out "$work/extraction.json"
+echo "results: tallow probe placement (cube, candle, sphere, blob; 32, 64, 128; $maps_repeats repeats)"
+kept "$work/placement.json" || "$tallow" probe placement --shapes cube,candle,sphere,blob --res 32,64,128 --repeats "$maps_repeats" --out "$work/placement.json"
 echo "results: tallow probe maps (bunny; K 4, 8, 16; N 1, 4, 8; 256² maps; $maps_repeats repeats)"
 kept "$work/maps.json" || "$tallow" probe maps --preset bunny --k 4,8,16 --n 1,4,8 --map-size 256 --repeats "$maps_repeats" --out "$work/maps.json"
 for gather in fragment compute; do
@@ -89,7 +93,8 @@ if software:
 add("Timings are medians of %d runs after one warm-up, on a machine shared with other builds, so they" % r["repeats"])
 add("are noisy. Each field is sampled once on the CPU per resolution (`sample`); the GPU path and")
 add("OpenVDB's `volumeToMesh` then contour exactly the same lattice. `GPU` is the span between")
-add("GL_TIMESTAMP queries around `extract()` (four passes, %d³-cell blocks), `GPU wall` is `extract()` +" % r["block_cells"])
+add("GL_TIMESTAMP queries around `extract()` (four passes, %d³-cell blocks, vertices placed by `field.placement=%s`)," % (r["block_cells"], r.get("placement", "mass")))
+add("`GPU wall` is `extract()` +")
 add("`glFinish()` on the CPU clock; the upload of the lattice into the 3D texture is excluded from both and")
 add("listed on its own. `CPU` is OpenVDB's mesher plus per-vertex gradient normals. Triangles per second")
 add("use the GPU timestamp span and the CPU time respectively. Buffer memory is everything the GPU path")
@@ -202,6 +207,7 @@ with open(dst, "w") as f:
     f.write("\n".join(lines) + "\n")
 PY
 python3 "$root/scripts/results_bench.py" report "$work/bench" "$root/docs/RESULTS.md.tmp" "$root/docs/images/results"
+python3 "$root/scripts/results_placement.py" "$work/placement.json" "$root/docs/RESULTS.md.tmp"
 # Issue 18: a GPU run of the device bench, copied into docs/gpu/, or the statement that none exists.
 python3 "$root/scripts/results_bench.py" gpu "$root/docs/gpu" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"

@@ -12,12 +12,15 @@ struct FieldObjects::Entry {
   FieldSource source;  ///< the field over time and its bounds (field units, every t)
   std::unique_ptr<geometry::GpuDualContouring> dc;
   int res = 0;
+  geometry::VertexPlacement placement = geometry::kDefaultPlacement;
   double timeS = std::numeric_limits<double>::quiet_NaN();
   bool pending = false;  ///< sampled and uploaded, not extracted yet
   bool extracted = false;
 
   Entry(int index, const SceneObject& object) : objectIndex(index), source(object) {}
-  bool stale(double t, int r) const { return dc == nullptr || r != res || (source.animated() && t != timeS); }
+  bool stale(double t, int r, geometry::VertexPlacement p) const {
+    return dc == nullptr || r != res || p != placement || (source.animated() && t != timeS);
+  }
 };
 
 FieldObjects::FieldObjects(const gpu::ShaderLibrary& shaders, const Scene& scene) : shaders_(shaders) {
@@ -39,16 +42,18 @@ bool FieldObjects::animated() const {
   return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->source.animated(); });
 }
 
-bool FieldObjects::stale(double timeS, int res) const {
-  return std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) { return e->stale(timeS, res); });
+bool FieldObjects::stale(double timeS, int res, geometry::VertexPlacement placement) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) { return e->stale(timeS, res, placement); });
 }
 
-void FieldObjects::sample(double timeS, int res, SceneGeometry& geometry) {
+void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry) {
   for (auto& e : entries_) {
-    if (!e->stale(timeS, res)) continue;
-    if (!e->dc || e->res != res) e->dc = std::make_unique<geometry::GpuDualContouring>(shaders_, res);
+    if (!e->stale(timeS, res, placement)) continue;
+    if (!e->dc || e->res != res || e->placement != placement)
+      e->dc = std::make_unique<geometry::GpuDualContouring>(shaders_, res, placement);
     e->dc->upload(e->source.sample(timeS, res));
     e->res = res;
+    e->placement = placement;
     e->timeS = timeS;
     e->pending = true;
     geometry.attachField(e->objectIndex, e->dc.get(), e->source.bounds());

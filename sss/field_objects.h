@@ -25,12 +25,13 @@ class FieldObjects {
   /// True when some field object changes with time.
   bool animated() const;
   bool empty() const { return entries_.empty(); }
-  /// True when some field must be sampled and extracted again for time t at `res` samples per axis:
-  /// nothing extracted yet, res changed, or t changed for an animated field (blob, candle).
-  bool stale(double timeS, int res) const;
+  /// True when some field must be sampled and extracted again for time t at `res` samples per axis
+  /// with vertices placed by `placement`: nothing extracted yet, res or placement changed, or t
+  /// changed for an animated field (blob, candle).
+  bool stale(double timeS, int res, geometry::VertexPlacement placement) const;
   /// CPU sampling at t and upload of every stale field (pass "field.sample"); re-attaches the
   /// extractors to `geometry` (call geometry.update afterwards).
-  void sample(double timeS, int res, SceneGeometry& geometry);
+  void sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
   void extract();
   /// Triangles of the last extractions. Reads a transform-feedback query, so it waits for the

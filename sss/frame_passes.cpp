@@ -46,21 +46,26 @@ std::string FieldSamplePass::reason(const FrameState& state) const {
 
 PassIo FieldSamplePass::io(const FrameState& state) const {
   // The fields' shapes are fixed when the renderer is made (FieldObjects); only t and the lattice
-  // resolution change what is sampled. A field that does not move does not read t.
-  PassIo io{{"field.res"}, {resource::kFieldLattice}, {}};
+  // resolution change what is sampled. The extractor, made here, holds the vertex placement. A field
+  // that does not move does not read t.
+  PassIo io{{"field.res", "field.placement"}, {resource::kFieldLattice}, {}};
   if (anyAnimatedField(state.scene)) io.reads.push_back("time");
   return io;
 }
 
 void FieldSamplePass::run(FrameContext& context, bool /*changed*/) {
-  context.modules.find<FieldObjects>()->sample(context.state.timeS, context.settings().fieldRes, context.geometry);
+  context.modules.find<FieldObjects>()->sample(context.state.timeS, context.settings().fieldRes,
+                                               context.settings().fieldPlacement, context.geometry);
   context.geometry.update(context.scene());
 }
 
 bool FieldExtractPass::needed(const FrameState& state) const { return fieldCount(state.scene) > 0; }
 
-std::string FieldExtractPass::reason(const FrameState&) const {
-  return "GPU dual contouring (surface nets) of the uploaded lattice(s) into transform-feedback buffers";
+std::string FieldExtractPass::reason(const FrameState& state) const {
+  return std::string("GPU dual contouring (vertices at the ") +
+         (state.settings.fieldPlacement == geometry::VertexPlacement::Qef ? "tangent planes' quadric minimum"
+                                                                          : "edge crossings' mass point") +
+         ") of the uploaded lattice(s) into transform-feedback buffers";
 }
 
 PassIo FieldExtractPass::io(const FrameState&) const { return {{resource::kFieldLattice}, {resource::kGeometry}, {}}; }

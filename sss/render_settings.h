@@ -1,6 +1,7 @@
 #pragma once
 // Every tunable of the renderer, one field each. The names, ranges, defaults and help live in one
 // place only, the parameter registry (app/config/params.cpp); this struct just holds the values.
+#include "geometry/vertex_placement.h"
 #include "gpu/tonemap.h"
 #include "sss/bssrdf/bssrdf.h"
 
@@ -104,6 +105,7 @@ struct RenderSettings {
   float shadowBias = 0.0f;    ///< render.shadow_bias [shadow-map texels along the normal]
   int pcfRadius = 0;          ///< render.pcf_radius [texels]
   int fieldRes = 0;           ///< field.res [lattice samples per axis]
+  geometry::VertexPlacement fieldPlacement = geometry::kDefaultPlacement;  ///< field.placement
   bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;

@@ -1,6 +1,7 @@
 // Quality matrix of the GPU dual contouring (issue 4, point 7): {blob, candle, bunny level set} ×
 // several t × lattices 32³..128³, an analytic sphere, and hard cases (blobs just merging, drips
-// about a cell thick, random draws). Every mesh must be
+// about a cell thick, random draws), each with both vertex placements (field.placement: the mass
+// point of the edge crossings and the QEF of their tangent planes, issue 16). Every mesh must be
 //   1. watertight: every undirected edge in exactly two triangles (all surfaces lie inside the
 //      lattice: sampleField pads the field's bounds by a cell);
 //   2. outward: signed volume > 0, and ≥ 99% of the triangles' winding normals agree with the
@@ -39,6 +40,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -239,7 +241,7 @@ class QualityFixture : public ::testing::Test {
   void SetUp() override { context_ = gpu::GlContext::create(gpu::ContextOptions{}); }
 
   TriangleMesh extract(const SampledLattice& lattice) {
-    GpuDualContouring dc(library_, lattice.n);
+    GpuDualContouring dc(library_, lattice.n, placement_);
     dc.upload(lattice);
     dc.extract();
     TriangleMesh mesh = dc.readBack();
@@ -342,7 +344,12 @@ class QualityFixture : public ::testing::Test {
 
   std::unique_ptr<gpu::GlContext> context_;
   gpu::ShaderLibrary library_;
+  VertexPlacement placement_ = kDefaultPlacement;  ///< of every extraction
 };
+
+constexpr VertexPlacement kPlacements[] = {VertexPlacement::Mass, VertexPlacement::Qef};
+
+std::string placementName(VertexPlacement p) { return std::string(vertexPlacementName(p)); }
 
 // --- The matrix: {blob, candle, bunny} × t × n -------------------------------------------------
 
@@ -350,11 +357,12 @@ struct Case {
   Kind kind;
   double t;
   int n;
+  VertexPlacement placement;
 };
 
 std::string caseName(const Case& c) {
   std::string t = std::to_string(static_cast<int>(std::lround(c.t * 100.0)));
-  return std::string(kindName(c.kind)) + "_t" + t + "cs_n" + std::to_string(c.n);
+  return std::string(kindName(c.kind)) + "_t" + t + "cs_n" + std::to_string(c.n) + "_" + placementName(c.placement);
 }
 
 void PrintTo(const Case& c, std::ostream* os) { *os << caseName(c); }
@@ -369,9 +377,10 @@ std::vector<Case> matrix() {
       {Kind::Candle, {0.0, 9.0, 20.0}},
       {Kind::Bunny, {0.0}}};            // static
   std::vector<Case> cases;
-  for (const auto& [kind, ts] : times)
-    for (double t : ts)
-      for (int n : {32, 48, 64, 96, 128}) cases.push_back({kind, t, n});
+  for (VertexPlacement placement : kPlacements)
+    for (const auto& [kind, ts] : times)
+      for (double t : ts)
+        for (int n : {32, 48, 64, 96, 128}) cases.push_back({kind, t, n, placement});
   return cases;
 }
 
@@ -379,6 +388,7 @@ class DualContouringQuality : public QualityFixture, public ::testing::WithParam
 
 TEST_P(DualContouringQuality, ClosedOutwardOnTheSurfaceAndNearOpenVdb) {
   const Case c = GetParam();
+  placement_ = c.placement;
   const ScalarField& field = fieldFor(c.kind, c.t);
   const SampledLattice lattice = sampleField(field, c.n);
   const std::string what = caseName(c);
@@ -391,15 +401,17 @@ INSTANTIATE_TEST_SUITE_P(Matrix, DualContouringQuality, ::testing::ValuesIn(matr
 
 // --- The analytic sphere ----------------------------------------------------------------------
 
-class DualContouringQualitySphere : public QualityFixture, public ::testing::WithParamInterface<int> {};
+class DualContouringQualitySphere : public QualityFixture,
+                                    public ::testing::WithParamInterface<std::tuple<int, VertexPlacement>> {};
 
 TEST_P(DualContouringQualitySphere, VolumeAreaAndRadiusMatchTheExactSphere) {
   constexpr double kRadius = 0.05;
   const glm::dvec3 centre(0.01, -0.02, 0.03);  // off the lattice's symmetry
   const SphereField sphere(centre, kRadius);
-  const int n = GetParam();
+  const auto [n, placement] = GetParam();
+  placement_ = placement;
   const SampledLattice lattice = sampleField(sphere, n);
-  const std::string what = "sphere_n" + std::to_string(n);
+  const std::string what = "sphere_n" + std::to_string(n) + "_" + placementName(placement);
   const TriangleMesh mesh = checkAll(sphere, lattice, what);
   if (mesh.triangles.empty()) return;
   const double exactVolume = 4.0 / 3.0 * std::numbers::pi * kRadius * kRadius * kRadius;
@@ -415,10 +427,13 @@ TEST_P(DualContouringQualitySphere, VolumeAreaAndRadiusMatchTheExactSphere) {
   EXPECT_LE(worstRadius, 0.5 * lattice.cellSize) << what;
 }
 
-INSTANTIATE_TEST_SUITE_P(Lattices, DualContouringQualitySphere, ::testing::Values(32, 48, 64, 96, 128),
-                         [](const ::testing::TestParamInfo<int>& info) {
+INSTANTIATE_TEST_SUITE_P(Lattices, DualContouringQualitySphere,
+                         ::testing::Combine(::testing::Values(32, 48, 64, 96, 128), ::testing::ValuesIn(kPlacements)),
+                         [](const ::testing::TestParamInfo<std::tuple<int, VertexPlacement>>& info) {
                            std::string name = "n";  // not "n" + …: GCC 12's false -Wrestrict
-                           return name += std::to_string(info.param);
+                           name += std::to_string(std::get<0>(info.param));
+                           name += '_';
+                           return name += placementName(std::get<1>(info.param));
                          });
 
 TEST(DualContouringQualityReference, VolumeEstimateOfTheSphereIsFarWithinTheTolerance) {
@@ -501,7 +516,10 @@ TEST_F(DualContouringQualityHard, BlobsJustMerging) {
       std::ostringstream what;
       what << "merging blob t=" << t << " n" << n << " (" << (t == lo ? "before" : "after") << ", CPU "
            << (t == lo ? countLo : countHi) << " components)";
-      checkAll(blob, lattice, what.str());
+      for (VertexPlacement placement : kPlacements) {
+        placement_ = placement;
+        checkAll(blob, lattice, what.str() + " " + placementName(placement));
+      }
     }
   }
 }
@@ -520,8 +538,12 @@ TEST_F(DualContouringQualityHard, CandleDripsAboutOneAndAHalfCellsThin) {
     const SampledLattice lattice = sampleField(candle, n);
     std::ostringstream what;
     what << "thin drips n" << n << " (drip radius " << params.dripRadius / lattice.cellSize << " cells)";
-    const TriangleMesh mesh = checkAll(candle, lattice, what.str());
-    if (!mesh.triangles.empty()) checkVolume(candle, lattice, mesh, what.str());
+    for (VertexPlacement placement : kPlacements) {
+      placement_ = placement;
+      const std::string name = what.str() + " " + placementName(placement);
+      const TriangleMesh mesh = checkAll(candle, lattice, name);
+      if (!mesh.triangles.empty()) checkVolume(candle, lattice, mesh, name);
+    }
   }
 }
 
@@ -547,8 +569,12 @@ TEST_F(DualContouringQualityHard, RandomFieldsTimesAndLattices) {
     SCOPED_TRACE(what.str());
     const ScalarField& field = fieldFor(kind, t);
     const SampledLattice lattice = sampleField(field, n);
-    const TriangleMesh mesh = checkAll(field, lattice, what.str());
-    if (!mesh.triangles.empty()) checkVolume(field, lattice, mesh, what.str());
+    for (VertexPlacement placement : kPlacements) {
+      placement_ = placement;
+      const std::string name = what.str() + " " + placementName(placement);
+      const TriangleMesh mesh = checkAll(field, lattice, name);
+      if (!mesh.triangles.empty()) checkVolume(field, lattice, mesh, name);
+    }
   }
 }
 

@@ -133,10 +133,23 @@ TEST_F(RegistryTest, BoolAndEnum) {
   registry.set(config, "render.tonemap", "reinhard");
   EXPECT_EQ(config.render.toneMap.op, gpu::ToneMap::Reinhard);
   EXPECT_EQ(setError("render.tonemap", "acse"),
-            "render.tonemap: unknown value \"acse\" (did you mean \"aces\"?); choices: clamp, reinhard, aces");
+            "render.tonemap: unknown value \"acse\" (did you mean \"aces\"?); choices: clamp, reinhard, aces, hue-preserving");
   EXPECT_EQ(setError("render.tonemap", "filmic"),
-            "render.tonemap: unknown value \"filmic\"; choices: clamp, reinhard, aces");
+            "render.tonemap: unknown value \"filmic\"; choices: clamp, reinhard, aces, hue-preserving");
   EXPECT_EQ(setError("render.tonemap", 2), "render.tonemap: expected a string, got 2");
+  registry.set(config, "render.tonemap", "hue-preserving");
+  EXPECT_EQ(config.render.toneMap.op, gpu::ToneMap::HuePreserving);
+}
+
+TEST_F(RegistryTest, FieldPlacementIsAnEnumDefaultingToTheExtractorsDefault) {
+  EXPECT_EQ(config.render.fieldPlacement, geometry::kDefaultPlacement);
+  EXPECT_EQ(registry.find("field.placement")->choices, (std::vector<std::string>{"qef", "mass"}));
+  registry.set(config, "field.placement", "mass");
+  EXPECT_EQ(config.render.fieldPlacement, geometry::VertexPlacement::Mass);
+  registry.set(config, "field.placement", "qef");
+  EXPECT_EQ(config.render.fieldPlacement, geometry::VertexPlacement::Qef);
+  EXPECT_EQ(setError("field.placement", "qfe"),
+            "field.placement: unknown value \"qfe\" (did you mean \"qef\"?); choices: qef, mass");
 }
 
 TEST_F(RegistryTest, Vec3ChecksShapeAndEachComponent) {

@@ -186,7 +186,7 @@ namespace {
 // The window's tone mapping (shaders/display.frag) and the PNG writer's (gpu/tonemap.cpp) compile
 // the same shaders/common/tonemap.glsl; on the same radiance they must agree to the 8-bit level.
 TEST(RenderGL, DisplayPassMatchesTheCppToneMapOfThePngWriter) {
-  for (const char* op : {"clamp", "reinhard", "aces"}) {
+  for (const char* op : {"clamp", "reinhard", "aces", "hue-preserving"}) {
     app::SceneOptions options;
     options.preset = "bunny";
     options.sets = {"render.width=160", "render.height=90", std::string("render.tonemap=") + op,

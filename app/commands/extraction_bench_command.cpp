@@ -129,6 +129,7 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
       {"fields", fields},
       {"repeats", o.repeats},
       {"block_cells", geometry::GpuDualContouring::kBlockCells},
+      {"placement", std::string(geometry::vertexPlacementName(geometry::kDefaultPlacement))},
       {"gpu",
        {{"backend", std::string(gpu::glBackendName(context->backend()))},
         {"GL_RENDERER", context->info().renderer},

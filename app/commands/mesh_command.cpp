@@ -55,7 +55,7 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
     if (options.cpu) {
       part = geometry::meshOnCpu(lattice, *f.source.at(options.timeS));
     } else {
-      geometry::GpuDualContouring dc(*shaders, res);
+      geometry::GpuDualContouring dc(*shaders, res, loaded.config.render.fieldPlacement);
       dc.upload(lattice);
       dc.extract();
       part = dc.readBack();

@@ -184,9 +184,14 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                               1),
                   [](auto& c) -> auto& { return c.render.pcfRadius; }));
   {
-    Param p = withDefault(declare("render.tonemap", "enum", "", "Tone-mapping operator of PNG and window output."),
+    Param p = withDefault(declare("render.tonemap", "enum", "",
+                                  "Tone-mapping operator of PNG and window output: clamp (clip to [0, 1]), reinhard "
+                                  "(c / (1 + c) per channel), aces (Narkowicz's fit of the ACES filmic curve, per "
+                                  "channel) or hue-preserving (a sigmoid of log luminance that keeps each colour's "
+                                  "hue and takes very bright colours to white instead of clipping a channel; "
+                                  "shaders/common/tonemap.glsl)."),
                           "aces");
-    p.choices = {"clamp", "reinhard", "aces"};
+    p.choices = {"clamp", "reinhard", "aces", "hue-preserving"};
     p.getter = [](const Config& c) { return json(std::string(gpu::toneMapName(c.render.toneMap.op))); };
     p.setter = [](Config& c, const json& v) { c.render.toneMap.op = gpu::parseToneMap(v.get<std::string>()); };
     r.add(std::move(p));
@@ -206,6 +211,22 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       512),
                               64),
                   [](auto& c) -> auto& { return c.render.fieldRes; }));
+  {
+    Param p = withDefault(
+        declare("field.placement", "enum", "",
+                "Where dual contouring puts each surface patch's vertex in its lattice cell: qef (the minimum of the "
+                "squared distances to the tangent planes at the patch's edge crossings, regularised toward their "
+                "mean as a probabilistic quadric, kept in the cell: sharp edges and corners stay sharp) or mass (the "
+                "mean of the edge crossings, surface nets: rounds them off, edges about half a cell deep and corners up "
+                "to a cell)."),
+        std::string(geometry::vertexPlacementName(geometry::kDefaultPlacement)));
+    p.choices = {"qef", "mass"};
+    p.getter = [](const Config& c) { return json(std::string(geometry::vertexPlacementName(c.render.fieldPlacement))); };
+    p.setter = [](Config& c, const json& v) {
+      c.render.fieldPlacement = geometry::parseVertexPlacement(v.get<std::string>());
+    };
+    r.add(std::move(p));
+  }
 
   // --- Subsurface scattering (issue 5; Dal Corso et al. 2017, "the paper" below) -----------------
   {

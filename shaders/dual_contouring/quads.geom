@@ -37,6 +37,13 @@ void emitTriangle(int a, int b, int c) {
 }
 
 vec3 positionOf(int i) { return vec3(vertices[i].px, vertices[i].py, vertices[i].pz); }
+vec3 normalOf(int i) { return vec3(vertices[i].nx, vertices[i].ny, vertices[i].nz); }
+
+// True when triangle a, b, c (in emission order) faces against its vertices' normals: a fold.
+bool folds(int a, int b, int c) {
+  vec3 pa = positionOf(a);
+  return dot(cross(positionOf(b) - pa, positionOf(c) - pa), normalOf(a) + normalOf(b) + normalOf(c)) <= 0.0;
+}
 
 // First vertex of `cell` in this extraction and its bits, or −1. The index map is never cleared
 // (a clear would cost time in proportion to the volume), so an entry is trusted only when the
@@ -108,8 +115,14 @@ void main() {
       }
     }
     if (m == 4) {
-      // Split along the shorter diagonal: fewer slivers on bent quads.
-      if (distance(positionOf(poly[0]), positionOf(poly[2])) <= distance(positionOf(poly[1]), positionOf(poly[3]))) {
+      // Split along the shorter diagonal: fewer slivers on bent quads; unless that folds a triangle
+      // over and the other diagonal does not (a quad across a sharp edge whose QEF vertices lie on
+      // the edge can be split across it).
+      bool split02 = distance(positionOf(poly[0]), positionOf(poly[2])) <= distance(positionOf(poly[1]), positionOf(poly[3]));
+      bool folds02 = folds(poly[0], poly[1], poly[2]) || folds(poly[0], poly[2], poly[3]);
+      bool folds13 = folds(poly[0], poly[1], poly[3]) || folds(poly[1], poly[2], poly[3]);
+      if (split02 ? folds02 && !folds13 : folds13 && !folds02) split02 = !split02;
+      if (split02) {
         emitTriangle(poly[0], poly[1], poly[2]);
         emitTriangle(poly[0], poly[2], poly[3]);
       } else {

@@ -1,12 +1,18 @@
 #version 450 core
-// Pass 2 (surface nets, Gibson 1998, with one vertex per patch: see patches.glsl): for each patch
-// of a sign-changing cell, a vertex at the mean of the patch's edge crossings, then the face
-// vertices the cell owns; normal = normalised field gradient by central differences on the
-// texture. Captured by transform feedback as (position, normal, cell, bits); the vertices of a
-// cell are consecutive (one invocation emits them in order). The counter also builds the indirect
-// dispatch of the index-map pass (one work group per 64 vertices).
+// Pass 2 (dual contouring with one vertex per patch: see patches.glsl): for each patch of a
+// sign-changing cell, a vertex at the mean of the patch's edge crossings (surface nets, Gibson
+// 1998), or, built with DC_QEF, at the minimum of the probabilistic quadric of their tangent planes
+// kept inside the cell (qef.glsl; the normal at a crossing is the lattice's gradient there,
+// crossingGradient below); then the face vertices the cell owns; normal = normalised field
+// gradient by central differences on the texture. Captured by transform feedback as (position,
+// normal, cell, bits); the vertices of a cell are consecutive (one invocation emits them in order).
+// The counter also builds the indirect dispatch of the index-map pass (one work group per 64
+// vertices).
 #include "dual_contouring/lattice.glsl"
 #include "dual_contouring/patches.glsl"
+#ifdef DC_QEF
+#include "dual_contouring/qef.glsl"
+#endif
 
 layout(points) in;
 layout(points, max_vertices = 10) out;  // 4 patches + 3 faces × 2
@@ -29,6 +35,31 @@ vec3 crossing(ivec3 a, ivec3 b) {
   float va = fieldAt(a), vb = fieldAt(b);
   return mix(vec3(a), vec3(b), clamp(va / (va - vb), 0.0, 1.0));
 }
+
+#ifdef DC_QEF
+float fieldClamped(ivec3 s) { return fieldAt(clamp(s, ivec3(0), ivec3(uSamples - 1))); }
+
+// ∇ of the field at the crossing at fraction t of the lattice edge from sample a to a + ê_k, from
+// the lattice alone (whatever filled it), in field units per lattice unit. Along the edge: the
+// edge's own difference. Across it, along each other axis j: the values interpolated at the same t
+// on the parallel lattice edges one and two samples away, differentiated by dcLatticeDerivative
+// (qef.glsl: central, or one-sided away from a crease that the central stencil straddles).
+vec3 crossingGradient(ivec3 a, int k, float t) {
+  ivec3 ek = ivec3(0);
+  ek[k] = 1;
+  vec3 g;
+  g[k] = fieldAt(a + ek) - fieldAt(a);
+  for (int i = 1; i < 3; ++i) {
+    int j = (k + i) % 3;
+    ivec3 ej = ivec3(0);
+    ej[j] = 1;
+    float f[5];
+    for (int m = -2; m <= 2; ++m) f[m + 2] = mix(fieldClamped(a + m * ej), fieldClamped(a + ek + m * ej), t);
+    g[j] = dcLatticeDerivative(f[0], f[1], f[2], f[3], f[4]);
+  }
+  return g;
+}
+#endif
 
 void emitVertex(vec3 s, int cell, uint bits) {
   const float h = 0.5;  // half-cell central differences (trilinear texture)
@@ -63,12 +94,22 @@ void main() {
   if (ambiguous) bits = cellPatches(v, count);
   vec3 sum[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   float crossings[4] = float[4](0.0, 0.0, 0.0, 0.0);
+#ifdef DC_QEF
+  DcQuadric quadric[4] = DcQuadric[4](dcQuadricEmpty(), dcQuadricEmpty(), dcQuadricEmpty(), dcQuadricEmpty());
+#endif
   for (int e = 0; e < 12; ++e) {
     int a = kEdges[e].x, b = kEdges[e].y;
     if (isInside(v[a]) == isInside(v[b])) continue;
     int p = edgePatch(bits, e);
-    sum[p] += mix(cellCorner(a), cellCorner(b), clamp(v[a] / (v[a] - v[b]), 0.0, 1.0));
+    float t = clamp(v[a] / (v[a] - v[b]), 0.0, 1.0);
+    vec3 x = mix(cellCorner(a), cellCorner(b), t);
+    sum[p] += x;
     crossings[p] += 1.0;
+#ifdef DC_QEF
+    vec3 g = crossingGradient(c + ivec3(cellCorner(a)), e / 4, t);  // kEdges: 4 edges per axis, from the lower corner
+    float len = length(g);
+    quadric[p] = dcQuadricAdd(quadric[p], x, len > 0.0 ? g / len : vec3(0.0));
+#endif
   }
 
   // Upper faces whose two segments join the same patch on both sides get face vertices.
@@ -95,7 +136,14 @@ void main() {
   atomicAdd(groupsX, (first + uint(total) + 63u) / 64u - (first + 63u) / 64u);
   uint cellBits = bits & ~(3u << 24);  // without the own-patch field
   int cell = cellIndex(c);
-  for (int p = 0; p < count; ++p) emitVertex(vec3(c) + sum[p] / crossings[p], cell, cellBits | (uint(p) << 24));
+  for (int p = 0; p < count; ++p) {
+#ifdef DC_QEF
+    vec3 inCell = dcLimitToLattice(v, dcQuadricMassPoint(quadric[p]), dcQuadricVertex(quadric[p], DC_QEF_SIGMA_N));
+#else
+    vec3 inCell = sum[p] / crossings[p];
+#endif
+    emitVertex(vec3(c) + inCell, cell, cellBits | (uint(p) << 24));
+  }
   for (int k = 0; k < 3; ++k) {
     if ((flags & (1u << k)) == 0u) continue;
     ivec3 kk = ivec3(0), u = ivec3(0), w = ivec3(0);
