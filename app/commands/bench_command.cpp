@@ -506,8 +506,10 @@ void writeRowPictures(const std::filesystem::path& folder, const Case& c, const 
   spec.differences = {{&row.first, &ref.radiance, "|first − reference|", 1},
                       {&row.last, &ref.radiance, "|last − reference|", 2}};
   if (row.equalTimeError) {
-    spec.images.push_back({&row.equalTimeImage, "reference at equal time, " + std::to_string(row.equalTimePasses) +
-                                                    " pass(es) (" + percent(row.equalTimeError->relRmse) + ")"});
+    std::string caption = "equal-time reference (";
+    caption += percent(row.equalTimeError->relRmse);
+    caption += ")";
+    spec.images.push_back({&row.equalTimeImage, caption});
     spec.differences.push_back({&row.equalTimeImage, &ref.radiance, "|equal time − reference|", 3});
   }
   writeComparisonFigure(folder / "comparison.png", spec);

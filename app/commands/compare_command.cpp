@@ -61,6 +61,8 @@ int runCompare(const CompareOptions& o) {
   difference += caption(1, o.b);
   difference += "|";
   spec.differences = {{&a, &b, difference, 1}};
+  spec.scaleLabel = "|Δ| / RMS of ";
+  spec.scaleLabel += caption(1, o.b);
   writeComparisonFigure(out, spec);
   std::printf("tallow: wrote %s\n", o.out.c_str());
   return 0;

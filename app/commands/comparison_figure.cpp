@@ -176,7 +176,7 @@ bool writeComparisonFigure(const std::filesystem::path& png, const FigureSpec& s
           const double barX = panelX(columns - 1) + panelW + kGap;
           std::fprintf(f, "set colorbox vertical user origin screen %.6f,%.6f size screen %.6f,%.6f\n", sx(barX),
                        sy(panelTop(1) + panelH), sx(14), static_cast<double>(panelH) / height);
-          std::fprintf(f, "set cblabel %s offset -1,0\n", gnuplotString("|Δ| / RMS of the reference").c_str());
+          std::fprintf(f, "set cblabel %s offset -1,0\n", gnuplotString(spec.scaleLabel).c_str());
           for (std::size_t i = 0; i < differences.size(); ++i) {
             place(spec.differences[i].column, 1);
             std::fprintf(f, "set title %s offset 0,-0.6\n", gnuplotString(spec.differences[i].caption).c_str());

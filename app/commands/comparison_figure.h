@@ -37,6 +37,8 @@ struct FigureSpec {
   /// Top of the colour scale as a fraction (0.2: 20%); 0: chosen from the differences (their 99th
   /// percentile rounded up to 1, 2 or 5 × 10^k), so that a few outliers do not darken the rest.
   double scale = 0.0;
+  /// The colour bar's label: what the differences are relative to.
+  std::string scaleLabel = "|Δ| / RMS of the reference";
 };
 
 /// |image − reference| per pixel (√(Δr² + Δg² + Δb²)) / √(mean over the mask of r² + g² + b² of the

@@ -262,12 +262,16 @@ void ViewPanel::drawTimingGraph() {
   const auto x = [&](double t) {
     return origin.x + w * static_cast<float>(std::clamp(1.0 - (now - t) / kGraphSeconds, 0.0, 1.0));
   };
-  // A line per decade, labelled just below it (the bottom one, on the axis, above it).
+  // A line per decade, labelled at the left just below it; the bottom one, the axis, at the right
+  // just above it, clear of the label of the decade above.
   for (double d = decadeLo; d <= decadeHi; d += 1.0) {
     const float yy = y(static_cast<float>(std::pow(10.0, d)));
     draw->AddLine(ImVec2(origin.x, yy), ImVec2(origin.x + w, yy), IM_COL32(70, 70, 80, 255));
-    const float textY = d == decadeLo ? yy - ImGui::GetFontSize() - 1.0f : yy + 1.0f;
-    draw->AddText(ImVec2(origin.x + 3, textY), IM_COL32(150, 150, 150, 255), millisecondsText(std::pow(10.0, d)).c_str());
+    const std::string text = millisecondsText(std::pow(10.0, d));
+    const ImVec2 at = d == decadeLo ? ImVec2(origin.x + w - ImGui::CalcTextSize(text.c_str()).x - 3.0f,
+                                             yy - ImGui::GetFontSize() - 1.0f)
+                                    : ImVec2(origin.x + 3.0f, yy + 1.0f);
+    draw->AddText(at, IM_COL32(150, 150, 150, 255), text.c_str());
   }
   const auto line = [&](const std::deque<float>& values, ImU32 colour, float thickness) {
     for (std::size_t j = 1; j < values.size() && j < times_.size(); ++j) {
