@@ -19,7 +19,7 @@ namespace {
 // and at most kMaxPanel (a large one shrunk: the figure is an overview; the EXR holds the pixels).
 constexpr int kMinPanel = 240, kMaxPanel = 360;
 constexpr int kGap = 12, kCaption = 26, kTitle = 34, kMargin = 10;
-constexpr int kColourBar = 110;  ///< right of the differences: the bar and its tick labels
+constexpr int kColourBar = 130;  ///< right of the differences: the bar, its tick labels and its label
 /// A sequential palette that stays readable in grey and for colour-blind readers: five stops of
 /// the perceptually uniform "viridis" ramp (van der Walt and Smith, matplotlib), 0 → top.
 constexpr const char* kPalette =

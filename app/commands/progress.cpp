@@ -57,7 +57,7 @@ std::string percent(int done, int total) { return std::to_string(std::clamp(100 
 std::string timing(const ProgressState& s) {
   std::string t = formatDuration(s.elapsedS);
   const double left = secondsLeft(s.done, s.total, s.elapsedS);
-  if (left >= 0.0) t += ", about " + formatDuration(left) + " left";
+  if (left > 0.0) t += ", about " + formatDuration(left) + " left";
   return t;
 }
 
