@@ -6,6 +6,7 @@
 
 #include "app/commands/bench_command.h"
 #include "app/commands/capture_command.h"
+#include "app/commands/compare_command.h"
 #include "app/commands/cost_command.h"
 #include "app/commands/extraction_bench_command.h"
 #include "app/commands/placement_probe_command.h"
@@ -13,6 +14,7 @@
 #include "app/commands/maps_bench_command.h"
 #include "app/commands/mesh_command.h"
 #include "app/commands/probe_command.h"
+#include "app/commands/provenance.h"
 #include "app/commands/profile_command.h"
 #include "app/commands/reference_command.h"
 #include "app/config/input_error.h"
@@ -49,6 +51,7 @@ int listParams() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tallow::app::recordCommandLine(argc, argv);  // stats.json's provenance
   CLI::App app{"Tallow: interactive directional subsurface scattering"};
   app.require_subcommand(0, 1);
 
@@ -109,6 +112,17 @@ int main(int argc, char** argv) {
   benchCmd->add_flag("--equal-time", bench.equalTime, "also run the reference for as long as each row's first frame");
   benchCmd->add_flag("--receivers", bench.receivers, "also compare the receivers' VPL term with the reference's emergent light (docs/vpl.md)");
   benchCmd->add_option("--gl", bench.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+
+  tallow::app::CompareOptions compare;
+  auto* compareCmd = app.add_subcommand("compare", "two EXR renders side by side with their difference in false colour, as one PNG");
+  compareCmd->add_option("a", compare.a, "A.exr")->required();
+  compareCmd->add_option("b", compare.b, "B.exr (the difference is relative to its RMS radiance)")->required();
+  compareCmd->add_option("--out", compare.out, "FIG.png")->required();
+  compareCmd->add_option("--caption", compare.captions, "caption of A, then of B (default: the file names)");
+  compareCmd->add_option("--title", compare.title, "title above the pictures");
+  compareCmd->add_option("--mask", compare.mask, "EXR whose alpha >= 0.5 marks the pixels compared (e.g. REF_stderr.exr)");
+  compareCmd->add_option("--exposure-ev", compare.exposureEv, "exposure before the tone map [stops]");
+  compareCmd->add_option("--scale", compare.scale, "top of the colour scale as a fraction, e.g. 0.2 (default: from the difference)");
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
 
@@ -215,6 +229,7 @@ int main(int argc, char** argv) {
     if (*captureCmd) return tallow::app::runCapture(capture);
     if (*referenceCmd) return tallow::app::runReference(reference);
     if (*benchCmd) return tallow::app::runBench(bench);
+    if (*compareCmd) return tallow::app::runCompare(compare);
     if (*paramsCmd) return listParams();
     if (*probeBssrdfCmd) return tallow::app::runProbeBssrdf(probeBssrdf);
     if (*profileCmd) return tallow::app::runProbeProfile(profile);

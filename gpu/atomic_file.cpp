@@ -45,24 +45,30 @@ std::filesystem::path reserveTemporary(const std::filesystem::path& path) {
 
 }  // namespace
 
+PendingFile::PendingFile(std::filesystem::path path) : path_(std::move(path)) {
+  if (path_.empty() || !path_.has_filename()) throwCannotWrite(path_, "not a file name");
+  tmp_ = reserveTemporary(path_);
+}
+
+PendingFile::~PendingFile() {
+  if (committed_) return;
+  std::error_code ignored;
+  std::filesystem::remove(tmp_, ignored);
+}
+
+void PendingFile::commit() {
+  if (committed_) return;
+  std::error_code ec;
+  std::filesystem::rename(tmp_, path_, ec);
+  if (ec) throwCannotWrite(path_, ec.message());  // the destructor removes the temporary
+  committed_ = true;
+}
+
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& writer) {
-  if (path.empty() || !path.has_filename()) throwCannotWrite(path, "not a file name");
-  const std::filesystem::path tmp = reserveTemporary(path);
-  try {
-    writer(tmp);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throwCannotWrite(path, ec.message());
-  }
+  PendingFile file(path);
+  writer(file.temporary());  // a throw leaves the temporary to the destructor
+  file.commit();
 }
 
 void writeTextFileAtomically(const std::filesystem::path& path, std::string_view text) {

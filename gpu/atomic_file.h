@@ -7,6 +7,25 @@
 
 namespace tallow::gpu {
 
+/// A file written over time (a video fed frame by frame): a fresh temporary beside `path`
+/// (`.NAME.tmp-<pid>-<counter>`, created empty) that commit() renames onto `path`; destroyed
+/// uncommitted, it removes the temporary. Throws std::runtime_error `cannot write PATH: REASON`.
+class PendingFile {
+ public:
+  explicit PendingFile(std::filesystem::path path);
+  ~PendingFile();
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+  const std::filesystem::path& temporary() const { return tmp_; }
+  /// Renames the temporary onto the target (once).
+  void commit();
+
+ private:
+  std::filesystem::path path_, tmp_;
+  bool committed_ = false;
+};
+
 /// Calls `writer` with a fresh, unique temporary path in the folder of `path`
 /// (`.NAME.tmp-<pid>-<counter>`, already created empty), then renames it onto `path`.
 /// If `writer` throws, the temporary file is removed and the exception propagates unchanged.

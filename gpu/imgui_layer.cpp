@@ -4,9 +4,27 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <filesystem>
 #include <stdexcept>
 
 namespace tallow::gpu {
+namespace {
+
+/// The panel's font: DejaVu Sans (Debian's fonts-dejavu-core) when installed, for the units and
+/// help texts' σ, ε, mm⁻¹, ², →, –; Dear ImGui's built-in font (ASCII and Latin-1 only) otherwise.
+constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+constexpr float kFontPixels = 15.0f;
+/// Latin-1, Greek, general punctuation, super- and subscripts, arrows, mathematical operators.
+constexpr ImWchar kGlyphRanges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x2000, 0x206F, 0x2070, 0x209F,
+                                    0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+
+void loadFont(ImGuiIO& io) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(kFontFile, ec)) return;
+  io.Fonts->AddFontFromFileTTF(kFontFile, kFontPixels, nullptr, kGlyphRanges);
+}
+
+}  // namespace
 
 ImGuiLayer::ImGuiLayer(GLFWwindow* window) {
   IMGUI_CHECKVERSION();
@@ -15,6 +33,7 @@ ImGuiLayer::ImGuiLayer(GLFWwindow* window) {
   io.IniFilename = nullptr;  // no imgui.ini in the user's folder: the panel starts the same every time
   io.LogFilename = nullptr;
   ImGui::StyleColorsDark();
+  loadFont(io);
   if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) {
     ImGui::DestroyContext();
     throw std::runtime_error("imgui: the GLFW backend did not start");

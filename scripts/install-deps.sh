@@ -9,8 +9,8 @@ packages=(
   build-essential cmake pkg-config python3 python3-glad
   # OpenGL contexts: GLFW window, OSMesa (headless default), EGL (Mesa or NVIDIA), llvmpipe driver
   libglfw3-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libglm-dev
-  # scene, images, command line
-  nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev libimath-dev libimgui-dev
+  # scene, images, command line; the view panel's font (units and help: σ, mm⁻¹, →)
+  nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev libimath-dev libimgui-dev fonts-dejavu-core
   # geometry (libopenvdb-dev's headers need Boost, which it does not pull in)
   libopenvdb-dev libboost-dev libtbb-dev
   # CPU ground truth

@@ -137,6 +137,7 @@ def run_vpl(work, quick):
     tallow("bench", "--preset", "candle-holder-block", "--size", "64x48" if quick else "96x72", "--methods",
            "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "8"), "--sweep", "vpl.shadows=false,true",
            "--receivers", "--ref-spp", "8" if quick else "256", "--out", f"{work}/vpl_shadows")
+    run_vpl_pictures(work, quick)
     # Costs: the vpl pass (frames while the maps accumulate) and the receivers' share of the surface
     # pass (converged frames: only the surface pass runs) against N_vpl and the receiver pixels.
     for size in VPL_COST_SIZES[:1] if quick else VPL_COST_SIZES:
@@ -155,6 +156,33 @@ def run_vpl(work, quick):
     tallow("capture", "--preset", "candle", "--size", "160x120" if quick else "640x480", "--frames", "3",
            "--set", "sss.maps=28", "--set", "sss.samples=45", "--set", "vpl.count=80",
            "--out", f"{work}/candle_paper")
+
+
+def run_vpl_pictures(work, quick):
+    """Pictures of the VPL shadows' effect, large enough to see it: the same scene captured at 320x240
+    with the maps accumulated, shadows off and on, and their difference in false colour (tallow compare)."""
+    pictures = f"{work}/vpl_pictures"
+    for shadows, name in (("false", "off"), ("true", "on")):
+        tallow("capture", "--preset", "candle-holder-block", "--size", "160x120" if quick else "320x240", "--frames", "1",
+               "--accumulate", "4" if quick else "16", "--set", "sss.frames=" + ("4" if quick else "16"),
+               "--set", f"vpl.shadows={shadows}", "--out", f"{pictures}/{name}")
+    tallow("compare", f"{pictures}/off/frame_0000.exr", f"{pictures}/on/frame_0000.exr",
+           "--caption", "VPL shadows off", "--caption", "VPL shadows on",
+           "--title", "candle holder beside a block", "--out", f"{pictures}/vpl_shadows.png")
+
+
+def report_vpl_pictures(work, add, images, rel_images):
+    """The VPL shadows off and on, captioned (run_vpl_pictures)."""
+    if not copy_figure(f"{work}/vpl_pictures/vpl_shadows.png", images, "vpl_shadows.png"):
+        return
+    pic = load(f"{work}/vpl_pictures/on/stats.json")
+    add("![VPL shadows off and on](%s/vpl_shadows.png)" % rel_images)
+    add("")
+    add("*The same scene rendered at %dx%d (`tallow capture`, the maps accumulated over %d renders), VPL shadows"
+        " off and on; below, where they differ (`tallow compare`: |off − on| per pixel relative to the RMS radiance of"
+        " the picture with shadows, in false colour with the scale bar on the right): the block's shadow of the"
+        " holder's emergent light on the table.*" % (pic["resolution"][0], pic["resolution"][1], pic["accumulate"]))
+    add("")
 
 
 def explain_crossover(pts, crossover, add):
@@ -225,6 +253,16 @@ def without_reference_noise(rel, eps):
     if rel is None or eps is None or not math.isfinite(eps):
         return None
     return math.sqrt(max(rel * rel - eps * eps, 0.0))
+
+
+# What the false-colour panels show (app/commands/comparison_figure.h); RESULTS says it under each figure.
+DIFFERENCE_NOTE = ("in false colour: |Δ| per pixel relative to the RMS radiance of the reference over the object's"
+                   " pixels, the bench's relative-RMSE metric pixel by pixel, with the scale bar on the right.")
+
+
+def row_figure(work, bench_dir, row):
+    """A bench row's captioned comparison picture (tallow bench: rows/<row>/comparison.png)."""
+    return os.path.join(work, bench_dir, row.get("folder", "rows/" + row["row"]), "comparison.png")
 
 
 def copy_figure(src, images, name):
@@ -300,14 +338,18 @@ def report(work, md, images):
         if row["settings"]["material"] == "Marble":
             marble[weight] = (row, eps, ours)
         if weight == "2":
-            copy_figure(f"{work}/materials/{row['row']}_equal_time.png", images, f"materials_{row['row']}.png")
+            copy_figure(row_figure(work, "materials", row), images, f"materials_{row['row']}.png")
     add("")
-    add("Reference | our converged frame | difference, per material (view_weight 2):")
+    add("Per material (view_weight 2): the reference, our first and converged frames (top) and their differences")
+    add("to the reference (bottom), " + DIFFERENCE_NOTE)
     add("")
     for row in mat["rows"]:
         if row["settings"]["sss.view_weight"] == "2":
             add("![%s](%s/materials_%s.png)" % (row["settings"]["material"], rel_images, row["row"]))
-    add("")
+            add("")
+            add("*%s: converged rel. RMSE %s (reference ε %s).*" % (
+                row["settings"]["material"], pct(row["last_rel_rmse"]), pct(reference_error(mat, row))))
+            add("")
 
     # --- Grazing incidence -------------------------------------------------------------------------
     slab = load(f"{work}/grazing_slab/bench.json")
@@ -367,18 +409,23 @@ def report(work, md, images):
     copy_figure(f"{work}/scale_0.1/convergence.png", images, "scales_convergence.png")
     for scale, b in scale_runs:
         for row in b["rows"]:
-            copy_figure(f"{work}/scale_{scale}/{row['row']}_equal_time.png", images, f"scales_{row['row']}_{scale:g}.png")
-    add("Speed against error and convergence with frames (0.1 m):")
+            copy_figure(row_figure(work, f"scale_{scale}", row), images, f"scales_{row['row']}_{scale:g}.png")
+    add("Speed against error (one colour and marker per method; dashed: the reference's own ε) and convergence")
+    add("with frames (0.1 m):")
     add("")
     add("![speed against error](%s/scales_speed_error.png) ![convergence](%s/scales_convergence.png)" % (rel_images, rel_images))
     add("")
-    add("Reference | our first frame | difference | reference at equal time, radiosity maps:")
+    add("Radiosity maps at each scale: the reference, our first and last frames and the reference run for as long")
+    add("as our first frame (top), their differences to the converged reference (bottom), " + DIFFERENCE_NOTE)
     add("")
     for scale, b in scale_runs:
         for row in b["rows"]:
             if row["method"] == "radiosity-maps":
                 add("![scale %g](%s/scales_%s_%g.png)" % (scale, rel_images, row["row"], scale))
-    add("")
+                add("")
+                add("*Bunny at %g m: first frame %s in %s ms; the reference at equal time %s.*" % (
+                    scale, pct(row["first_rel_rmse"]), fmt(row["first_wall_ms"], 0), pct(row.get("equal_time_rel_rmse"))))
+                add("")
 
     # --- Fig. 11 ---------------------------------------------------------------------------------
     add("### Cached against no-cache by screen occupancy (the paper's Fig. 11; target 4)")
@@ -520,14 +567,7 @@ def report_vpl(work, add, images, rel_images):
                                             pct(without_reference_noise(e.get("rel_rmse"), sem.get("rel_error"))),
                                             fmt(e.get("mean_ratio")), fmt(row["gpu_ms_median"].get("vpl"), 1)))
     add("")
-    for row in s["rows"]:
-        if row["settings"]["vpl.shadows"] == "true":
-            copy_figure(f"{work}/vpl_shadows/{row['row']}_last.png", images, "vpl_shadows_on.png")
-        else:
-            copy_figure(f"{work}/vpl_shadows/{row['row']}_last.png", images, "vpl_shadows_off.png")
-    add("Without and with VPL shadows (last frame): ![off](%s/vpl_shadows_off.png) ![on](%s/vpl_shadows_on.png)"
-        % (rel_images, rel_images))
-    add("")
+    report_vpl_pictures(work, add, images, rel_images)
     # Costs.
     add("Cost against N_vpl and receiver pixels (candle holder; llvmpipe, so the ratios matter, not the ms): the `vpl`")
     add("pass (cube of the outermost surface + one compute invocation per VPL; medians over the frames that ran it)")
@@ -663,13 +703,16 @@ def report_peers(work, add, images, rel_images):
     for w in wins:
         add(w)
     add("")
-    add("The 0.1 m bunny, each method's first frame: reference | the method's frame | difference | reference at equal")
-    add("time (the pictures of the equal-time runs above):")
+    add("The 0.1 m bunny, each method: the reference, the method's first and last frames and the reference run for")
+    add("as long as its first frame (top), their differences to the reference (bottom), " + DIFFERENCE_NOTE)
     add("")
     for row in load(f"{work}/scale_0.1/bench.json")["rows"]:
         if row["method"] in PEER_METHODS:
             add("![%s](%s/scales_%s_0.1.png)" % (row["method"], rel_images, row["row"]))
-    add("")
+            add("")
+            add("*%s: first frame %s, last frame %s.*" % (row["method"], pct(row["first_rel_rmse"]),
+                                                         pct(row["last_rel_rmse"])))
+            add("")
     if peers_plot(runs, images, "peers_speed_error"):
         add("Speed against error, every scene (filled: first frame; open: converged):")
         add("")

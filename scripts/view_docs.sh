@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the screenshots of docs/view.md (docs/images/view/): `tallow view --screenshot` under
-# a virtual display (Xvfb) of our own, one run per picture; nothing is drawn by hand.
+# a virtual display (Xvfb) of our own, one run per picture; and the pictures of docs/commands.md
+# (docs/images/commands/): a small `tallow bench`'s plot and a row's comparison figure, and
+# `tallow compare`. Nothing is drawn by hand.
 # Usage: bash scripts/view_docs.sh [--quick]   (--quick: smaller, fewer frames, for a smoke run)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -10,11 +12,13 @@ size=1000x560
 frames=24
 if [ "${1:-}" = "--quick" ]; then size=480x300; frames=4; fi
 images="$root/docs/images/view"
-mkdir -p "$images"
+commands="$root/docs/images/commands"
+mkdir -p "$images" "$commands"
 work="$(mktemp -d)"
 
-# Xvfb picks a free display itself and writes its number to fd 3 once it accepts connections.
-Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$work/display" >"$work/xvfb.log" 2>&1 &
+# Xvfb picks a free display itself and writes its number to fd 3 once it accepts connections. The
+# screen holds the panel (420 pixels) beside a 1000-pixel image.
+Xvfb -displayfd 3 -screen 0 1920x1080x24 -nolisten tcp 3>"$work/display" >"$work/xvfb.log" 2>&1 &
 xvfb=$!
 trap 'kill $xvfb 2>/dev/null; wait $xvfb 2>/dev/null; rm -rf "$work"' EXIT
 for _ in $(seq 200); do [ -s "$work/display" ] && break; sleep 0.05; done
@@ -34,6 +38,9 @@ shot() {  # name, then view arguments
 
 shot panel-candle --preset candle
 shot panel-blob --preset blob --time 4
+# F1 pressed at the last frame: the panel hidden, the picture filling the window.
+printf 'frame %d key f1\n' "$((frames - 1))" >"$work/f1.txt"
+shot no-panel --preset bunny --script "$work/f1.txt"
 shot map --preset bunny --debug-view map:2
 shot gbuffer-normal --preset bunny --debug-view gbuffer-normal:0
 shot gbuffer-point --preset candle-holder --debug-view gbuffer-position:0:2
@@ -49,3 +56,17 @@ echo "view_docs: difference"
 "$tallow" view "${quick[@]}" --size "$ref_size" --preset bunny --reference "$work/ref.exr" --debug-view difference \
   --set render.exposure_ev=3 --screenshot "$images/difference.png" >/dev/null
 echo "view_docs: wrote $(ls "$images" | wc -l) pictures to docs/images/view/"
+
+# docs/commands.md: a small bench of the bunny (three methods, two settings of the maps) against a
+# reference of the same size: its speed-against-error plot and one row's comparison figure.
+echo "view_docs: bench"
+"$tallow" bench --preset bunny --size 160x120 --methods radiosity-maps,no-cache,image-space \
+  --sweep sss.maps=8,16 --set sss.frames=8 --set sss.map_size=256 --set sss.light_map_size=256 --set sss.samples=4 \
+  --ref-spp 8 --out "$work/bench" >/dev/null
+cp "$work/bench/speed_error.png" "$commands/bench-speed-error.png"
+cp "$work/bench/rows/radiosity-maps_sss.maps-16/comparison.png" "$commands/bench-comparison.png"
+# tallow compare: that row's last frame against the reference, over the reference's object pixels.
+"$tallow" compare "$work/bench/rows/radiosity-maps_sss.maps-16/last.exr" "$work/bench/reference.exr" \
+  --mask "$work/bench/reference_stderr.exr" --caption "radiosity maps, K = 16" --caption "reference (8 passes)" \
+  --title "tallow compare" --out "$commands/compare.png" >/dev/null
+echo "view_docs: wrote $(ls "$commands" | wc -l) pictures to docs/images/commands/"

@@ -3,10 +3,14 @@
 // and one line + non-zero exit + nothing written for each kind of bad input.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -108,7 +112,7 @@ TEST_F(BenchCli, TableHasOneRowPerMethodAndSettingWithFiniteErrors) {
 
     // The bench's RMSE recomputed from the float EXR of the last frame, with the metric's own
     // definition written out here: object pixels are those of the reference's standard-error alpha.
-    const gpu::Image last = gpu::readExr(out / (row.at("row") + "_last.exr"));
+    const gpu::Image last = gpu::readExr(out / "rows" / row.at("row") / "last.exr");
     const gpu::Image reference = gpu::readExr(ref());
     const gpu::Image stderrImage = gpu::readExr(dir_->path() / "ref_stderr.exr");
     ASSERT_EQ(last.pixels.size(), reference.pixels.size());
@@ -141,9 +145,46 @@ TEST_F(BenchCli, TableHasOneRowPerMethodAndSettingWithFiniteErrors) {
   std::size_t expected = 0;
   for (const auto& row : rows) expected += std::stoul(row.at("frames"));
   EXPECT_EQ(frames.size(), expected);
-  for (const char* file : {"bench.json", "radiosity-maps_sss.maps-4_first.png", "radiosity-maps_sss.maps-4_last.png",
-                           "radiosity-maps_sss.maps-4_diff.png", "albedo_sss.maps-8_equal_time.png"})
+  // One folder of pictures per row.
+  for (const char* file : {"bench.json", "rows/radiosity-maps_sss.maps-4/first.png", "rows/radiosity-maps_sss.maps-4/last.png",
+                           "rows/albedo_sss.maps-8/last.exr"})
     EXPECT_TRUE(std::filesystem::is_regular_file(out / file)) << file;
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out / "rows"), std::filesystem::directory_iterator()), 4);
+
+  // 8x6 pixels hold a few dozen object pixels: said on stderr and in bench.json.
+  EXPECT_NE(r.err.find("tallow: warning: bench: only " + rows[0].at("object_pixels") + " object pixels are compared"),
+            std::string::npos)
+      << r.err;
+  std::ifstream in(out / "bench.json");
+  const nlohmann::json bench = nlohmann::json::parse(in);
+  ASSERT_EQ(bench["warnings"].size(), 1u);
+  EXPECT_NE(bench["provenance"]["tallow_version"].get<std::string>().find("git"), std::string::npos);
+  EXPECT_EQ(bench["run"]["state"], "complete");
+  // The reference's ε on every row, on the console and in the table.
+  for (const auto& row : rows) EXPECT_FALSE(row.at("reference_rel_error").empty()) << row.at("row");
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 5) << "four rows and the summary:\n" << r.out;
+  EXPECT_NE(r.out.find("(reference ε "), std::string::npos) << r.out;
+
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed: no plots";
+  // The plot's script: one series per method, each its own colour and marker; every point labelled
+  // with its sweep value (placed clear of the others); a dashed line at the reference's ε.
+  std::ifstream gp(out / "speed_error.gp");
+  const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
+  const std::regex series("with points pt ([0-9]+) ps [0-9.]+ lc rgb '(#[0-9A-Fa-f]+)' title \"([a-z-]+)\"");
+  std::map<std::string, std::pair<std::string, std::string>> styles;
+  for (auto it = std::sregex_iterator(script.begin(), script.end(), series); it != std::sregex_iterator(); ++it)
+    styles[(*it)[3]] = {(*it)[1], (*it)[2]};
+  ASSERT_EQ(styles.size(), 2u) << script;
+  EXPECT_NE(styles["albedo"].first, styles["radiosity-maps"].first);
+  EXPECT_NE(styles["albedo"].second, styles["radiosity-maps"].second);
+  const std::regex label("set label \"[48]\" at screen");
+  EXPECT_EQ(std::distance(std::sregex_iterator(script.begin(), script.end(), label), std::sregex_iterator()), 4) << script;
+  EXPECT_NE(script.find("set label \"reference ε "), std::string::npos) << script;
+  EXPECT_NE(script.find("nohead dt 2"), std::string::npos) << "the ε line";
+  EXPECT_TRUE(std::filesystem::is_regular_file(out / "speed_error.png"));
+  // Each row's comparison picture: reference, first and last frames and their differences in false colour.
+  const gpu::Image figure = gpu::readPng(out / "rows/radiosity-maps_sss.maps-4/comparison.png");
+  EXPECT_GT(figure.width, 3 * 240) << "three panels, each enlarged to at least 240 pixels";
 }
 
 TEST_F(BenchCli, BadInputGivesOneLineAndWritesNothing) {

@@ -45,11 +45,15 @@ TEST_F(SceneEditParams, MaterialCoefficientsOfTheFirstObject) {
   EXPECT_EQ(config.scene.objects[0].material.name, "Marble");
   registry.set(config, "material.sigma_s", json::array({1.0, 2.0, 3.0}));
   EXPECT_EQ(config.scene.objects[0].material.sigma_s, glm::vec3(1.0f, 2.0f, 3.0f));
-  EXPECT_EQ(config.scene.objects[0].material.name, "custom");
+  // The measured material it came from stays named, with a mark; a second edit does not mark it twice.
+  EXPECT_EQ(config.scene.objects[0].material.name, "Marble (modified)");
+  registry.set(config, "material.eta", 1.4);
+  EXPECT_EQ(config.scene.objects[0].material.name, "Marble (modified)");
+  EXPECT_EQ(registry.get(config, "material"), "Marble (modified)");
   // sss::validateMaterial's checks refuse what a preset's would, and nothing changes.
   EXPECT_EQ(setError("material.g", json::array({0.0, 1.0, 0.0})), "material.g: g_g = 1 is not in (-1, 1)");
   EXPECT_EQ(setError("material.eta", 0.0), "material.eta: eta must be a positive number (0)");
-  EXPECT_EQ(config.scene.objects[0].material.eta, 1.5f);
+  EXPECT_EQ(config.scene.objects[0].material.eta, 1.4f);
   EXPECT_EQ(setError("material.sigma_a", json::array({0.0, -1.0, 0.0})),
             "material.sigma_a: -1 is out of range [0, 1e+06] (component y)");
 }
@@ -99,6 +103,15 @@ TEST(ParamWidgets, GroupsAndWidgetsFollowTheDeclarations) {
   EXPECT_EQ(widget("scale"), ParamWidget::LogSlider);        // [1e-5, 1e3] m
   EXPECT_EQ(widget("camera.position"), ParamWidget::Drag);   // ±1e4 m
   EXPECT_EQ(widget("light.direction"), ParamWidget::Slider); // [-1, 1] per component
+  // Labels: the key without its group, with the unit unless it repeats the name.
+  const auto label = [&](const char* key, const char* group) { return paramLabel(*registry.find(key), group); };
+  EXPECT_EQ(label("sss.map_size", "sss"), "map_size [texels]");
+  EXPECT_EQ(label("sss.maps", "sss"), "maps");
+  EXPECT_EQ(label("material.sigma_a", "material"), "sigma_a [mm⁻¹]");
+  EXPECT_EQ(label("sss.view_weight", "sss"), "view_weight");
+  EXPECT_EQ(label("scale", "general"), "scale [m]");
+  // Every unit is short enough for a label beside a widget (the help carries the explanation).
+  for (const Registry::Param& p : registry.params()) EXPECT_LE(p.units.size(), 18u) << p.key << ": " << p.units;
 }
 
 }  // namespace

@@ -4,10 +4,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 
 #include "gpu/image_io.h"
 #include "gpu/tonemap.h"
@@ -57,46 +59,203 @@ int maxChannelGap(const glm::ivec3& a, const glm::ivec3& b) {
 #define SKIP_WITHOUT_XVFB() \
   if (!test::xvfbAvailable()) GTEST_SKIP() << "Xvfb is not installed"
 
-TEST(View, ScreenshotShowsTheObjectAndThePanel) {
+TEST(View, ThePictureLiesBesideThePanelPixelForPixel) {
   SKIP_WITHOUT_XVFB();
   test::TempDir dir;
-  const auto r = test::runUnderXvfb(
-      tallowLine({"view", "--preset", "blob", "--frames", "30", "--fps", "30", "--screenshot", "out.png"}), dir.path());
+  const auto r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--frames", "20", "--fps", "30", "--paused",
+                                                "--screenshot", "out.png", "--screenshot", "out.exr", "--stats",
+                                                "stats.json"}),
+                                    dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json stats = readJson(dir.path() / "stats.json");
+  const json view = stats["frames"].back()["view"];
+  // The window opens with the panel's 420 pixels beside the 320x240 image, 480 pixels tall (room
+  // for the panel); the image is shown at scale 1, centred in the viewport right of the panel.
+  EXPECT_EQ(view["window"], json({740, 480}));
+  EXPECT_EQ(view["panel"], json({0, 0, 420, 480}));
+  EXPECT_EQ(view["image"], json({420, 120, 320, 240}));
+  EXPECT_EQ(view["scale"], 1.0);
+  for (const json& frame : stats["frames"]) {
+    const json& p = frame["view"]["panel"];
+    const json& i = frame["view"]["image"];
+    ASSERT_TRUE(p.is_array() && i.is_array());
+    EXPECT_LE(p[0].get<int>() + p[2].get<int>(), i[0].get<int>()) << "the panel reaches into the image";
+  }
   const gpu::Image png = gpu::readPng(dir.path() / "out.png");
-  ASSERT_EQ(png.width, 320);
-  ASSERT_EQ(png.height, 240);
+  ASSERT_EQ(png.width, 740);
+  ASSERT_EQ(png.height, 480);
 
-  // The panel: ImGui's window at the top left, 40% of the width (128 px). Its title bar has the dark
-  // style's TitleBgActive colour, (0.16, 0.29, 0.48) in imgui_draw.cpp's StyleColorsDark, i.e.
-  // (41, 74, 122) in bytes; the right half of the bar has no title text. ±2: rounding of the
-  // backend's 8-bit vertex colours.
+  // The image's place in the window shows the rendered image and nothing else: every pixel is the
+  // tone-mapped radiance of the same frame (out.exr), up to the EXR's half floats and the GPU's
+  // against the CPU's tone map: within 2 levels of 255 nearly everywhere (a panel, a border or a
+  // stretched copy over any of it would be off by tens of levels there).
+  const gpu::Image exr = gpu::readExr(dir.path() / "out.exr");
+  ASSERT_EQ(exr.width, 320);
+  gpu::ToneMapSettings toneMap;
+  toneMap.op = gpu::parseToneMap(stats["parameters"]["render.tonemap"].get<std::string>());
+  toneMap.exposureEv = stats["parameters"]["render.exposure_ev"].get<float>();
+  const std::vector<std::uint8_t> expected = gpu::toneMappedRgb8(exr, toneMap);
+  int off = 0, worst = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const std::size_t k = 3 * (static_cast<std::size_t>(y) * 320 + static_cast<std::size_t>(x));
+      const glm::ivec3 want(expected[k], expected[k + 1], expected[k + 2]);
+      const int gap = maxChannelGap(byteAt(png, 420 + x, 120 + y), want);
+      worst = std::max(worst, gap);
+      off += gap > 2;
+    }
+  std::printf("[ view    ] image region against the tone-mapped EXR: %d of 76800 pixels off by more than 2 levels, "
+              "largest gap %d\n", off, worst);
+  EXPECT_LE(off, 76800 / 200);  // 0.5%
+  EXPECT_LE(worst, 16);
+
+  // The panel: ImGui's window at the left, its title bar in the dark style's TitleBgActive colour,
+  // (0.16, 0.29, 0.48), i.e. (41, 74, 122) in bytes, right of the title's text; ±2: rounding.
   const glm::ivec3 titleBar(41, 74, 122);
   int titlePixels = 0;
-  for (int x = 70; x < 120; ++x) titlePixels += maxChannelGap(byteAt(png, x, 8), titleBar) <= 2;
-  EXPECT_GE(titlePixels, 45) << "of 50 pixels of the title bar, at (70..119, 8): " << byteAt(png, 100, 8).x << ","
-                             << byteAt(png, 100, 8).y << "," << byteAt(png, 100, 8).z;
-  // Its text: white glyphs (ImGuiCol_Text is (1, 1, 1)); the image left of x = 128 is dark sky and
-  // grey floor, which never reaches 250 in every channel.
+  for (int x = 330; x < 410; ++x) titlePixels += maxChannelGap(byteAt(png, x, 8), titleBar) <= 2;
+  EXPECT_GE(titlePixels, 75) << "of 80 pixels of the title bar at (330..409, 8): " << byteAt(png, 380, 8).x << ","
+                             << byteAt(png, 380, 8).y << "," << byteAt(png, 380, 8).z;
+  // Its text: white glyphs (ImGuiCol_Text is (1, 1, 1)) in the panel.
   int white = 0;
-  for (int y = 20; y < 240; ++y)
-    for (int x = 0; x < 128; ++x) {
+  for (int y = 30; y < 480; ++y)
+    for (int x = 0; x < 420; ++x) {
       const glm::ivec3 c = byteAt(png, x, y);
       white += c.x >= 250 && c.y >= 250 && c.z >= 250;
     }
-  EXPECT_GT(white, 100) << "no text in the panel";
+  EXPECT_GT(white, 200) << "no text in the panel";
+  // Above and below the image: the window's dark background, not the panel or the picture.
+  EXPECT_LE(maxChannelGap(byteAt(png, 580, 60), glm::ivec3(15, 15, 18)), 2);
+}
 
-  // The image: the sky at the top right is the preset's background radiance (0.03, 0.03, 0.035)
-  // through the ACES tone map at 0 EV (±1: rounding); the blob at the image centre is not sky.
-  gpu::ToneMapSettings aces;
-  const glm::vec3 sky = gpu::toneMapToSrgb(glm::vec3(0.03f, 0.03f, 0.035f), aces);
-  const glm::ivec3 skyByte(std::lround(sky.r * 255), std::lround(sky.g * 255), std::lround(sky.b * 255));
-  EXPECT_LE(maxChannelGap(byteAt(png, 315, 4), skyByte), 1);
-  double gap = 0.0;
-  int n = 0;
-  for (int y = 100; y < 140; ++y)
-    for (int x = 150; x < 190; ++x, ++n) gap += maxChannelGap(byteAt(png, x, y), skyByte);
-  EXPECT_GT(gap / n, 40.0) << "the centre of the image looks like the sky: no object";
+/// The state of every parameter at each frame of a view's stats.json: the first frame's snapshot
+/// with each frame's "changed" applied in turn.
+std::vector<json> parameterStates(const json& stats) {
+  std::vector<json> states;
+  json state = stats["parameters"];
+  for (const json& frame : stats["frames"]) {
+    for (auto it = frame["changed"].begin(); it != frame["changed"].end(); ++it) state[it.key()] = it.value();
+    states.push_back(state);
+  }
+  return states;
+}
+
+TEST(View, HotkeysAsScriptEvents) {
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  dir.write("keys.txt",
+            "frame 2 key space\n"    // pause: the clock holds from frame 2 on
+            "frame 4 key right\n"    // one frame on
+            "frame 5 key left\n"
+            "frame 5 key left\n"     // two back
+            "frame 6 orbit 40 0\n"
+            "frame 7 key r\n"        // the preset's camera again
+            "frame 8 key f1\n"       // the panel hidden: the image fills the window
+            "frame 9 key s\n"
+            "frame 10 key s\n"       // a second screenshot, numbered after the first
+            "frame 11 key f1\n"
+            "frame 12 key escape\n"  // quit before frame 12 is drawn
+            "frame 13 set sss.maps=2\n");
+  const auto r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--fps", "30", "--time", "1", "--frames",
+                                                "20", "--script", "keys.txt", "--stats", "stats.json"}),
+                                    dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json frames = readJson(dir.path() / "stats.json")["frames"];
+  ASSERT_EQ(frames.size(), 12u) << "Esc at frame 12 closed the window";
+  // Times: 1 + i/30 while playing; held once paused; one step on, two back.
+  const double step = 1.0 / 30.0;
+  const double times[] = {1.0, 1.0 + step, 1.0 + 2 * step, 1.0 + 2 * step, 1.0 + 3 * step, 1.0 + step};
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(frames[i]["time_s"].get<double>(), times[i], 1e-9) << "frame " << i;
+  for (int i = 6; i < 12; ++i) EXPECT_NEAR(frames[i]["time_s"].get<double>(), 1.0 + step, 1e-9) << "frame " << i;
+  EXPECT_TRUE(frames[1]["view"]["playing"].get<bool>());
+  for (int i = 2; i < 12; ++i) EXPECT_FALSE(frames[i]["view"]["playing"].get<bool>()) << "frame " << i;
+  // R: the camera back where the orbit took it from.
+  const json before = parameterStates(readJson(dir.path() / "stats.json"))[5]["camera.position"];
+  ASSERT_TRUE(frames[6]["changed"].contains("camera.position"));
+  ASSERT_TRUE(frames[7]["changed"].contains("camera.position"));
+  EXPECT_EQ(frames[7]["changed"]["camera.position"], before);
+  // F1: no panel, the 320x240 image enlarged twice into the 740x480 window, centred.
+  for (int i = 8; i < 11; ++i) {
+    EXPECT_FALSE(frames[i]["view"]["panel_visible"].get<bool>()) << "frame " << i;
+    EXPECT_TRUE(frames[i]["view"]["panel"].is_null());
+    EXPECT_EQ(frames[i]["view"]["image"], json({50, 0, 640, 480})) << "frame " << i;
+  }
+  EXPECT_EQ(frames[11]["view"]["panel"], json({0, 0, 420, 480}));
+  // S twice: two numbered files, neither overwriting the other.
+  const gpu::Image first = gpu::readPng(dir.path() / "tallow-blob-0001.png");
+  const gpu::Image second = gpu::readPng(dir.path() / "tallow-blob-0002.png");
+  EXPECT_EQ(first.width, 740);
+  EXPECT_EQ(second.height, 480);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "tallow-blob-0003.png"));
+}
+
+TEST(View, KeyTapsAreNotLostAtALowFrameRate) {
+#ifndef TALLOW_TEST_XKEYS
+  GTEST_SKIP() << "built without Xlib's headers: no tallow_xkeys to press keys";
+#else
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  // Slow frames (64 samples per texel, 16 maps, the blob moving so the maps restart each frame), and
+  // keys tapped as a user does: press and release within a millisecond, inside one frame. Polling
+  // the keys' state once a frame sees neither tap; GLFW's key callback queues both. Without --frames
+  // only the window closing ends the run, so a lost Esc would run until `timeout` (exit 124, after two minutes).
+  const std::string view = "timeout 120 " + tallowLine({"view", "--preset", "blob", "--fps", "30", "--stats",
+                                                         "stats.json", "--set", "sss.samples=64", "--set", "sss.maps=16"});
+  // The first tap once frames are being drawn (the window appears before the first frame).
+  const std::string keys = std::string("'") + TALLOW_TEST_XKEYS + "' Tallow 120 wait:3000 space:2500 Escape:0";
+  const auto r = test::runUnderXvfb(view + " & pid=$!; " + keys + " || { kill $pid; exit 3; }; wait $pid", dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json frames = readJson(dir.path() / "stats.json")["frames"];
+  ASSERT_GE(frames.size(), 2u);
+  std::vector<double> walls;
+  for (const json& f : frames) walls.push_back(f["wall_ms"].get<double>());
+  std::sort(walls.begin(), walls.end());
+  std::printf("[ view    ] %zu frames before Esc, median %.0f ms each\n", frames.size(), walls[walls.size() / 2]);
+  EXPECT_FALSE(frames.back()["view"]["playing"].get<bool>()) << "the Space tap paused the clock";
+  // Paused once, at one frame: playing before it (unless the first frame outlasted the wait).
+  int pauses = 0;
+  for (std::size_t i = 1; i < frames.size(); ++i)
+    pauses += frames[i - 1]["view"]["playing"].get<bool>() && !frames[i]["view"]["playing"].get<bool>();
+  EXPECT_LE(pauses, 1);
+#endif
+}
+
+TEST(View, UndoRestoresTheExactPresetAndRedoReappliesTheEdit) {
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  dir.write("edits.txt",
+            "frame 1 save-preset a.json\n"
+            "frame 2 set sss.maps=8\n"
+            "frame 3 set material=Ketchup\n"
+            "frame 4 set material.eta=1.4\n"
+            "frame 5 key ctrl+z\n"
+            "frame 5 key ctrl+z\n"
+            "frame 5 key ctrl+z\n"
+            "frame 6 save-preset b.json\n"
+            "frame 7 key ctrl+y\n"
+            "frame 8 save-preset c.json\n");
+  const auto r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--paused", "--fps", "30", "--frames", "9",
+                                                "--script", "edits.txt", "--stats", "stats.json"}),
+                                    dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json stats = readJson(dir.path() / "stats.json");
+  const json& frames = stats["frames"];
+  const std::vector<json> states = parameterStates(stats);
+  // The material edit kept the measured material's name, marked.
+  EXPECT_EQ(frames[4]["changed"]["material"], "Ketchup (modified)");
+  // Three undos: every value as the preset had it, and the saved preset the same file, byte for byte.
+  EXPECT_EQ(states[5], states[0]);
+  EXPECT_FALSE(frames[5]["view"]["can_undo"].get<bool>());
+  EXPECT_TRUE(frames[5]["view"]["can_redo"].get<bool>());
+  const auto slurp = [&](const char* name) {
+    std::ifstream in(dir.path() / name);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  ASSERT_FALSE(slurp("a.json").empty());
+  EXPECT_EQ(slurp("b.json"), slurp("a.json"));
+  // Redo: the first edit again, and only it.
+  EXPECT_EQ(frames[7]["changed"], json({{"sss.maps", 8}}));
+  EXPECT_EQ(json::parse(slurp("c.json"))["settings"]["sss.maps"], 8);
 }
 
 TEST(View, ScriptChangesTakeEffectOnTheNextFrame) {

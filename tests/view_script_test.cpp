@@ -101,6 +101,21 @@ TEST(ViewScript, MistakesAreLocated) {
   EXPECT_EQ(errorOf(std::string("frame 1 pause\nframe 2 \0play", 27)), "s.txt:2:9: NUL character (not a text file?)");
 }
 
+TEST(ViewScript, KeysAreTheWindowsHotkeys) {
+  const Script s = parse("frame 1 key space\nframe 2 key Ctrl+Z\nframe 2 key ctrl+shift+z\nframe 3 key esc\n");
+  ASSERT_EQ(s.commands.size(), 4u);
+  EXPECT_EQ(s.commands[0].action, ScriptAction::Key);
+  EXPECT_EQ(s.commands[0].hotkey, Hotkey::PlayPause);
+  EXPECT_EQ(s.commands[1].hotkey, Hotkey::Undo);
+  EXPECT_EQ(s.commands[2].hotkey, Hotkey::Redo);
+  EXPECT_EQ(s.commands[3].hotkey, Hotkey::Quit);
+  EXPECT_EQ(errorOf("frame 1 key"), "s.txt:1:12: key: expected a hotkey, e.g. space or ctrl+z");
+  EXPECT_EQ(errorOf("frame 1 key ctrl+x"), "s.txt:1:13: key: unknown hotkey \"ctrl+x\" (did you mean \"ctrl+z\"?)");
+  EXPECT_EQ(errorOf("frame 1 key space bar"), "s.txt:1:19: unexpected \"bar\" after key");
+  // Every hotkey's script name reads back as that hotkey.
+  for (const Hotkey k : allHotkeys()) EXPECT_EQ(parseHotkey(hotkeyName(k)), k) << hotkeyName(k);
+}
+
 TEST(DebugView, NamesRoundTrip) {
   for (const char* text : {"final", "gbuffer-position:0:0", "gbuffer-normal:2:5", "map:7", "coverage", "vpl",
                            "wireframe", "difference"})

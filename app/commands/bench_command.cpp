@@ -7,15 +7,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <thread>
 
+#include "app/commands/bench_plot.h"
 #include "app/commands/capture_command.h"
+#include "app/commands/comparison_figure.h"
 #include "app/commands/frame_stats.h"
 #include "app/commands/gnuplot.h"
+#include "app/commands/interrupt.h"
+#include "app/commands/progress.h"
+#include "app/commands/provenance.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "gpu/atomic_file.h"
@@ -40,6 +46,10 @@ constexpr std::uint64_t kReferenceSeed = 1;
 constexpr std::uint64_t kEqualTimeSeedOffset = 1000;
 /// A cap on the equal-time reference's passes, which its time budget stops long before.
 constexpr int kEqualTimeMaxPasses = 1 << 16;
+/// Fewer object pixels than this make the error a statistic of a handful of pixels: said.
+constexpr std::size_t kFewObjectPixels = 1000;
+/// Where each row's pictures go: DIR/rows/<row>/.
+constexpr const char* kRowsFolder = "rows";
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -64,6 +74,19 @@ struct ReferenceGroup {
   std::size_t objectPixels = 0;
   json info;  ///< passes, relative error, seconds, file
   std::string file;  ///< name in DIR, when computed here
+  bool complete = true;  ///< false: a stop request cut its integration short
+  /// Its relative standard error ε (NaN when unknown): a row's error below it is the reference's noise.
+  double relError() const {
+    if (info.contains("rel_error") && info["rel_error"].is_number()) return info["rel_error"].get<double>();
+    if (info.contains("attributes") && info["attributes"].contains("tallow.rel_error")) {
+      try {
+        return std::stod(info["attributes"]["tallow.rel_error"].get<std::string>());
+      } catch (const std::exception&) {
+        // Not a number: unknown.
+      }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 struct FramePoint {
@@ -159,7 +182,7 @@ void loadGivenReference(const BenchOptions& o, int width, int height, ReferenceG
   }
 }
 
-void computeGroupReference(const BenchOptions& o, ReferenceGroup& g) {
+void computeGroupReference(const BenchOptions& o, ReferenceGroup& g, const sss::ReferenceProgress& progress) {
   ReferenceOptions r;
   r.scene = g.scene;
   r.timeS = o.timeS;
@@ -169,7 +192,8 @@ void computeGroupReference(const BenchOptions& o, ReferenceGroup& g) {
   r.seed = kReferenceSeed;
   r.out = g.file;  // validateReferenceOptions wants a name; nothing is written by computeReference
   if (o.receivers) r.emergent = sss::kDefaultEmitterPoints;
-  const sss::ReferenceResult result = computeReference(r);
+  const sss::ReferenceResult result = computeReference(r, progress);
+  g.complete = !interrupted();
   g.radiance = result.radiance;
   g.standardError = result.standardError;
   g.emergent = result.emergent;
@@ -205,6 +229,7 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
   row.frames = std::max(minFrames, accumulated + 2);
   double cumulative = 0.0;
   for (int i = 0; i < row.frames; ++i) {
+    throwIfInterrupted();  // a row stopped half-way is not a row: it is left out
     const auto plan = renderer.planFrame(scene, settings, timeS);
     const bool accumulating = std::any_of(plan.begin(), plan.end(), [](const sss::PlannedPass& p) {
       return p.name == "sss.maps" || p.name == "image_space.scatter";
@@ -257,33 +282,13 @@ void runEqualTime(const LoadedScene& truth, const ReferenceGroup& ref, const Ben
   s.seed = kReferenceSeed + kEqualTimeSeedOffset;
   const double budgetMs = row.firstWallMs;
   const auto start = Clock::now();
-  const sss::ReferenceResult r = sss::renderReference(truth.config.scene, truth.config.render, s,
-                                                      [&](int, double) { return msSince(start) < budgetMs; });
+  const sss::ReferenceResult r = sss::renderReference(
+      truth.config.scene, truth.config.render, s, [&](int, double) { return msSince(start) < budgetMs && !interrupted(); });
+  throwIfInterrupted();
   row.equalTimeMs = msSince(start);
   row.equalTimePasses = r.passes;
   row.equalTimeError = gpu::imageError(r.radiance, ref.radiance, ref.standardError);
   row.equalTimeImage = r.radiance;
-}
-
-/// Panels side by side, left to right (all the same size).
-gpu::Image strip(const std::vector<const gpu::Image*>& panels) {
-  const int w = panels.front()->width, h = panels.front()->height;
-  gpu::Image out(w * static_cast<int>(panels.size()), h);
-  for (std::size_t k = 0; k < panels.size(); ++k)
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) out.at(static_cast<int>(k) * w + x, y) = panels[k]->at(x, y);
-  return out;
-}
-
-std::string cpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
-    }
-  return "unknown";
 }
 
 json optionalNumber(const std::vector<double>& values) { return values.empty() ? json(nullptr) : json(median(values)); }
@@ -298,38 +303,217 @@ json errorJson(const gpu::ImageError& e) {
   return {{"rmse", e.rmse}, {"rel_rmse", e.relRmse}, {"max", e.maxError}, {"mean_ratio", e.meanRatio}};
 }
 
-void writePlots(const std::filesystem::path& outDir, const std::string& title, bool hasRows) {
+/// "4.2%" (or "unknown" for a reference without an estimate).
+std::string percent(double v) {
+  if (!std::isfinite(v)) return "unknown";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * v);
+  return text;
+}
+
+/// The rows' convergence after the restart (convergence.png, its script kept as convergence.gp).
+void writeConvergencePlot(const std::filesystem::path& outDir, const std::string& title) {
   const std::filesystem::path out = std::filesystem::absolute(outDir);  // the kept script runs from anywhere
-  if (!hasRows) return;
   runGnuplot(
-      out / "bench.gp",
+      out / "convergence.gp",
       [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
-        // bench.csv: column 1 the row's name; the others are looked up by header name. The bench
-        // draws into temporary files; the script is kept, to redraw by hand (its "# redraw" line).
+        // convergence.csv: column 1 the row's name; the others are looked up by header name.
         std::fprintf(f,
-                     "# redraw: gnuplot -e \"speed_png='speed_error.png'; convergence_png='convergence.png'\" "
-                     "bench.gp\n"
-                     "if (!exists(\"speed_png\")) speed_png = '%s'\n"
+                     "# redraw: gnuplot -e \"convergence_png='convergence.png'\" convergence.gp\n"
                      "if (!exists(\"convergence_png\")) convergence_png = '%s'\n"
                      "set key autotitle columnhead\n"
-                     "set output speed_png\n"
-                     "set title \"%s: speed against error\" noenhanced\n"
-                     "set logscale x\nset xlabel 'median wall time per frame [ms]'\n"
-                     "set ylabel 'relative RMSE of the last frame'\nset grid\nunset key\n"
-                     "plot '%s' using 'median_wall_ms':'last_rel_rmse' with points pt 7 ps 1.2, \\\n"
-                     "     '' using 'median_wall_ms':'last_rel_rmse':1 with labels offset 0,1 font ',8' noenhanced\n"
                      "set output convergence_png\n"
                      "set title \"%s: convergence after a restart\" noenhanced\n"
-                     "unset logscale x\nset xlabel 'frames since the restart'\nset ylabel 'relative RMSE'\n"
+                     "set xlabel 'frames since the restart'\nset ylabel 'relative RMSE'\nset grid\n"
                      "set key outside right noenhanced\n"
                      "rows = system(\"tail -n +2 '%s' | cut -d, -f1 | uniq\")\n"
                      "plot for [r in rows] '%s' using ((strcol(1) eq r) ? column('frame') + 1 : 1/0):'rel_rmse' "
                      "with linespoints title r\n",
-                     tmp[0].c_str(), tmp[1].c_str(), title.c_str(), (out / "bench.csv").c_str(), title.c_str(),
-                     (out / "convergence.csv").c_str(), (out / "convergence.csv").c_str());
+                     tmp[0].c_str(), title.c_str(), (out / "convergence.csv").c_str(), (out / "convergence.csv").c_str());
       },
-      {out / "speed_error.png", out / "convergence.png"}, "the bench plots",
-      /*keepScript=*/true);
+      {out / "convergence.png"}, "the bench's convergence plot", /*keepScript=*/true);
+}
+
+/// What the bench has done so far, as the tables and bench.json say it.
+struct BenchState {
+  const BenchOptions* options = nullptr;
+  const LoadedScene* base = nullptr;
+  std::vector<std::string> methods;
+  std::vector<Sweep> sweeps;
+  std::vector<Case>* cases = nullptr;
+  std::vector<ReferenceGroup>* groups = nullptr;
+  std::vector<std::pair<std::size_t, RowResult>> rows;  ///< (case index, result), in the order run
+  std::vector<std::string> passNames;                   ///< in the order first seen
+  std::vector<std::string> warnings;
+  json gpu;
+  std::string state = "running";  ///< "running", "complete", "interrupted"
+};
+
+/// bench.csv, convergence.csv and bench.json of the rows done, each rewritten whole.
+void writeTables(const std::filesystem::path& out, const BenchState& b) {
+  const BenchOptions& o = *b.options;
+  const bool givenReference = !o.reference.empty();
+  std::vector<std::string> header = {"row", "method"};
+  for (const Sweep& s : b.sweeps) header.push_back(s.key);
+  for (const char* h : {"reference", "reference_rel_error", "frames", "converged_frames", "first_wall_ms", "first_rmse",
+                        "first_rel_rmse", "median_wall_ms", "median_accumulating_wall_ms", "median_converged_wall_ms"})
+    header.push_back(h);
+  for (const std::string& p : b.passNames) header.push_back("gpu_ms_" + p);
+  for (const char* h : {"last_rmse", "last_rel_rmse", "last_max_error"}) header.push_back(h);
+  if (o.equalTime)
+    for (const char* h : {"equal_time_ms", "equal_time_passes", "equal_time_rel_rmse"}) header.push_back(h);
+  for (const char* h : {"object_pixels", "gpu_bytes", "maps_bytes", "triangles"}) header.push_back(h);
+
+  json jsonRows = json::array(), jsonConvergence = json::array();
+  std::string csv, convergenceCsv = "row,method";
+  for (const Sweep& s : b.sweeps) convergenceCsv += "," + s.key;
+  convergenceCsv += ",frame,cumulative_wall_ms,rmse,rel_rmse\n";
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) csv += ',';
+    csv += header[i];
+  }
+  csv += "\n";
+  const Registry registry = parameterRegistry(b.base->materials);
+  for (const auto& [index, row] : b.rows) {
+    const Case& c = (*b.cases)[index];
+    const ReferenceGroup& ref = (*b.groups)[static_cast<std::size_t>(c.group)];
+    json settings = json::object();
+    for (std::size_t i = 0; i < b.sweeps.size(); ++i) settings[b.sweeps[i].key] = c.values[i];
+    json passMedians = json::object();
+    for (const std::string& p : b.passNames) {
+      const auto it = row.passMs.find(p);
+      passMedians[p] = it == row.passMs.end() ? json(nullptr) : json(median(it->second));
+    }
+    const double eps = ref.relError();
+    json values = {{"row", c.name},
+                   {"method", c.method},
+                   {"folder", std::string(kRowsFolder) + "/" + c.name},
+                   {"reference", givenReference ? std::filesystem::path(o.reference).filename().string() : ref.file},
+                   {"reference_rel_error", std::isfinite(eps) ? json(eps) : json(nullptr)},
+                   {"frames", row.frames},
+                   {"converged_frames", row.convergedFrames},
+                   {"first_wall_ms", row.firstWallMs},
+                   {"first_rmse", row.firstError.rmse},
+                   {"first_rel_rmse", row.firstError.relRmse},
+                   {"median_wall_ms", median(row.wallMs)},
+                   {"median_accumulating_wall_ms", optionalNumber(row.accumulatingMs)},
+                   {"median_converged_wall_ms", optionalNumber(row.convergedMs)},
+                   {"last_rmse", row.lastError.rmse},
+                   {"last_rel_rmse", row.lastError.relRmse},
+                   {"last_max_error", row.lastError.maxError},
+                   {"object_pixels", row.lastError.pixels},
+                   {"gpu_bytes", row.gpuBytes},
+                   {"maps_bytes", row.mapsBytes ? json(*row.mapsBytes) : json(nullptr)},
+                   {"triangles", row.triangles}};
+    if (row.equalTimeError) {
+      values["equal_time_ms"] = row.equalTimeMs;
+      values["equal_time_passes"] = row.equalTimePasses;
+      values["equal_time_rel_rmse"] = row.equalTimeError->relRmse;
+    }
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      const std::string& h = header[i];
+      json v = values.contains(h) ? values[h] : settings.contains(h) ? settings[h] : json(nullptr);
+      if (h.rfind("gpu_ms_", 0) == 0) v = passMedians[h.substr(7)];
+      if (i) csv += ',';
+      csv += cell(v);
+    }
+    csv += "\n";
+    json convergence = json::array();
+    for (const FramePoint& p : row.convergence) {
+      convergenceCsv += c.name + "," + c.method;
+      for (const std::string& v : c.values) convergenceCsv += "," + v;
+      // Appended piece by piece: `"," + std::string&&` trips GCC 12's false -Wrestrict (bug 105651).
+      for (const std::string& cellText : {std::to_string(p.index), formatNumber(p.cumulativeMs),
+                                          formatNumber(p.error.rmse), formatNumber(p.error.relRmse)}) {
+        convergenceCsv += ',';
+        convergenceCsv += cellText;
+      }
+      convergenceCsv += '\n';
+      convergence.push_back({{"frame", p.index}, {"cumulative_wall_ms", p.cumulativeMs}, {"rmse", p.error.rmse},
+                             {"rel_rmse", p.error.relRmse}});
+    }
+    values["settings"] = settings;
+    values["gpu_ms_median"] = passMedians;
+    values["wall_ms"] = row.wallMs;
+    values["first_error"] = errorJson(row.firstError);
+    values["last_error"] = errorJson(row.lastError);
+    if (row.equalTimeError) values["equal_time_error"] = errorJson(*row.equalTimeError);
+    if (row.receiverError) values["receiver_error"] = errorJson(*row.receiverError);
+    values["parameters"] = registry.snapshot(c.loaded.config);
+    jsonRows.push_back(values);
+    jsonConvergence.push_back({{"row", c.name}, {"frames", convergence}});
+  }
+
+  json references = json::array();
+  for (const ReferenceGroup& g : *b.groups) {
+    json s = json::object();
+    for (const auto& [k, v] : g.settings) s[k] = v;
+    json entry = g.info;
+    entry["settings"] = s;
+    entry["object_pixels"] = g.objectPixels;
+    entry["complete"] = g.complete;
+    references.push_back(entry);
+  }
+  json provenance = provenanceJson();
+  provenance["gl"] = b.gpu;
+  const json result = {
+      {"command", "bench"},
+      {"run", {{"state", b.state}, {"rows_requested", b.cases->size()}, {"rows_written", b.rows.size()}}},
+      {"provenance", provenance},
+      {"preset", b.base->presetName},
+      {"width", b.base->config.render.width},
+      {"height", b.base->config.render.height},
+      {"time_s", o.timeS},
+      {"sets", o.scene.sets},
+      {"sweeps", o.sweeps},
+      {"methods", b.methods},
+      {"min_frames", o.frames},
+      {"equal_time", o.equalTime},
+      {"receivers", o.receivers},
+      {"gpu", b.gpu},
+      {"cpu", provenance["cpu"]},
+      {"reference_method", kReferenceMethod},
+      {"references", references},
+      {"warnings", b.warnings},
+      {"error_metric",
+       "over object pixels (reference standard-error alpha >= 0.5): e_p = sqrt(dr^2+dg^2+db^2); rmse = "
+       "sqrt(mean e_p^2); rel_rmse = rmse / sqrt(mean (r^2+g^2+b^2) of the reference); max = max e_p"},
+      {"rows", jsonRows},
+      {"convergence", jsonConvergence}};
+  gpu::writeTextFileAtomically(out / "bench.csv", csv);
+  gpu::writeTextFileAtomically(out / "convergence.csv", convergenceCsv);
+  gpu::writeTextFileAtomically(out / "bench.json", result.dump(2) + "\n");
+}
+
+/// A row's pictures in DIR/rows/<row>/: first.png, last.png, last.exr and comparison.png (the
+/// reference, the first and last frames, with --equal-time the reference run as long as the first
+/// frame, and their differences to the reference in false colour).
+void writeRowPictures(const std::filesystem::path& folder, const Case& c, const ReferenceGroup& ref,
+                      const RowResult& row, bool figures) {
+  std::filesystem::create_directories(folder);
+  const gpu::ToneMapSettings& toneMap = c.loaded.config.render.toneMap;
+  gpu::writePng(folder / "first.png", row.first, toneMap);
+  gpu::writePng(folder / "last.png", row.last, toneMap);
+  gpu::writeExr(folder / "last.exr", row.last, gpu::ExrPixelType::Float);
+  if (!figures) return;
+  FigureSpec spec;
+  spec.title = c.name;
+  spec.toneMap = toneMap;
+  spec.mask = &ref.standardError;
+  spec.images = {{&ref.radiance, "reference"},
+                 {&row.first, "first frame (" + percent(row.firstError.relRmse) + ")"},
+                 {&row.last, "last frame, " + std::to_string(row.frames) + " frames (" +
+                                 percent(row.lastError.relRmse) + ")"}};
+  spec.differences = {{&row.first, &ref.radiance, "|first − reference|", 1},
+                      {&row.last, &ref.radiance, "|last − reference|", 2}};
+  if (row.equalTimeError) {
+    std::string caption = "equal-time reference (";
+    caption += percent(row.equalTimeError->relRmse);
+    caption += ")";
+    spec.images.push_back({&row.equalTimeImage, caption});
+    spec.differences.push_back({&row.equalTimeImage, &ref.radiance, "|equal time − reference|", 3});
+  }
+  writeComparisonFigure(folder / "comparison.png", spec);
 }
 
 }  // namespace
@@ -416,7 +600,25 @@ int runBench(const BenchOptions& o) {
   const std::filesystem::path out(o.outDir);
   checkWritableFolder(out);
 
-  // The references: read, or integrated on the CPU (nothing written yet).
+  BenchState state;
+  state.options = &o;
+  state.base = &base;
+  state.methods = methods;
+  state.sweeps = sweeps;
+  state.cases = &cases;
+  state.groups = &groups;
+  const auto warn = [&](Progress* progress, const std::string& text) {
+    state.warnings.push_back(text);
+    const std::string line = "tallow: warning: bench: " + text;
+    if (progress) progress->print(line, stderr);
+    else std::fprintf(stderr, "%s\n", line.c_str());
+  };
+
+  // SIGINT/SIGTERM: the reference in hand stops after its pass, a row in hand is dropped; what is
+  // done is written (the references, the rows finished, the tables of those, the plots).
+  const InterruptScope interruptScope;
+
+  // The references: read, or integrated on the CPU and written as soon as each is done.
   for (std::size_t gi = 0; gi < groups.size(); ++gi) {
     ReferenceGroup& g = groups[gi];
     if (givenReference) {
@@ -425,8 +627,25 @@ int runBench(const BenchOptions& o) {
       g.file = "reference";
       if (groups.size() > 1) g.file += "_" + std::to_string(gi);
       g.file += ".exr";
-      std::fprintf(stderr, "tallow: bench: computing %s on the CPU\n", g.file.c_str());
-      computeGroupReference(o, g);
+      std::string what = "reference";
+      if (groups.size() > 1) what += " " + std::to_string(gi + 1) + " of " + std::to_string(groups.size());
+      Progress progress(what, "pass", 0);
+      ReferenceOptions tracked;
+      tracked.spp = o.refSpp;
+      tracked.relError = o.refRelError;
+      ReferenceTracker tracker(tracked, progress);
+      computeGroupReference(o, g, std::ref(tracker));
+      progress.finish();
+      std::filesystem::create_directories(out);
+      std::map<std::string, std::string> attributes = {{"tallow.preset", base.presetName},
+                                                       {"tallow.passes", std::to_string(g.info["passes"].get<int>())},
+                                                       {"tallow.rel_error", formatNumber(g.relError())},
+                                                       {"tallow.version", tallowVersion()},
+                                                       {"tallow.complete", g.complete ? "yes" : "no"}};
+      gpu::writeExr(out / g.file, g.radiance, gpu::ExrPixelType::Float, attributes);
+      gpu::writeExr(standardErrorPath(out / g.file), g.standardError, gpu::ExrPixelType::Float, attributes);
+      std::fprintf(stderr, "tallow: bench: %s: %d pass(es), relative standard error ε %s%s\n", g.file.c_str(),
+                   g.info["passes"].get<int>(), percent(g.relError()).c_str(), g.complete ? "" : " (stopped early)");
     }
     g.objectPixels = gpu::objectPixels(g.standardError);
     if (o.receivers && (g.emergent.pixels.empty() || gpu::objectPixels(g.emergent) == 0))
@@ -434,6 +653,11 @@ int runBench(const BenchOptions& o) {
     if (g.objectPixels == 0)
       throw InputError("bench: the reference has no object pixel (no translucent object in view), so there is "
                        "nothing to compare");
+    if (g.objectPixels < kFewObjectPixels)
+      warn(nullptr, "only " + std::to_string(g.objectPixels) + " object pixels are compared" +
+                        (givenReference ? std::string() : " (" + g.file + ")") + ": an error over so few pixels says " +
+                        "little; raise --size or bring the object closer");
+    if (interrupted()) break;
   }
 
   gpu::ContextOptions contextOptions;
@@ -441,175 +665,87 @@ int runBench(const BenchOptions& o) {
   contextOptions.visible = false;
   const auto context = gpu::GlContext::create(contextOptions);
   const gpu::ShaderLibrary shaders = makeShaderLibrary(o.scene.shaderDir);
+  state.gpu = {{"backend", std::string(gpu::glBackendName(context->backend()))},
+               {"GL_VENDOR", context->info().vendor},
+               {"GL_RENDERER", context->info().renderer},
+               {"GL_VERSION", context->info().version}};
+  const bool figures = gnuplotAvailable();
+  if (!figures) std::fprintf(stderr, "tallow: gnuplot is not installed: no comparison pictures and no plots\n");
 
-  std::vector<RowResult> rows;
-  std::vector<std::string> passNames;  // in the order first seen
-  for (const Case& c : cases) {
+  // The rows, each written when it is done (its pictures, then the tables of every row so far).
+  const Registry registry = parameterRegistry(base.materials);
+  const std::vector<std::string>& allMethods = registry.find("method")->choices;
+  Progress progress("bench", "row", static_cast<int>(cases.size()));
+  for (std::size_t ci = 0; ci < cases.size() && !interrupted(); ++ci) {
+    const Case& c = cases[ci];
     const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
+    progress.update(static_cast<int>(ci), c.name);
     if (o.scene.explain)
-      std::fputs(sss::formatPlan(sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render), c.name + ": ")
-                     .c_str(),
-                 stdout);
-    RowResult row = runRow(c, ref, shaders, o.frames, o.timeS, o.receivers);
-    if (o.equalTime) {
-      LoadedScene truth = loadScene(ref.scene);
-      runEqualTime(truth, ref, o, row);
+    {
+      std::string text = sss::formatPlan(sss::Renderer::plan(c.loaded.config.scene, c.loaded.config.render), c.name + ": ");
+      if (!text.empty() && text.back() == '\n') text.pop_back();  // print() ends the line
+      progress.print(text, stdout);
+    }
+    RowResult row;
+    try {
+      row = runRow(c, ref, shaders, o.frames, o.timeS, o.receivers);
+      if (o.equalTime) {
+        LoadedScene truth = loadScene(ref.scene);
+        runEqualTime(truth, ref, o, row);
+      }
+    } catch (const Interrupted&) {
+      break;
     }
     for (const auto& [name, ms] : row.passMs)
-      if (std::find(passNames.begin(), passNames.end(), name) == passNames.end()) passNames.push_back(name);
-    std::printf("%-40s first %9.3f ms rel %.4g  median %9.3f ms  last rel %.4g\n", c.name.c_str(), row.firstWallMs,
-                row.firstError.relRmse, median(row.wallMs), row.lastError.relRmse);
-    rows.push_back(std::move(row));
+      if (std::find(state.passNames.begin(), state.passNames.end(), name) == state.passNames.end())
+        state.passNames.push_back(name);
+    char line[512];
+    std::snprintf(line, sizeof line, "%-40s first %9.3f ms rel %-7s median %9.3f ms  last rel %-7s (reference ε %s)",
+                  c.name.c_str(), row.firstWallMs, percent(row.firstError.relRmse).c_str(), median(row.wallMs),
+                  percent(row.lastError.relRmse).c_str(), percent(ref.relError()).c_str());
+    progress.print(line, stdout);
+    writeRowPictures(out / kRowsFolder / c.name, c, ref, row, figures);
+    // The pictures are on disk: the row keeps only its numbers.
+    row.first = row.last = row.equalTimeImage = gpu::Image();
+    state.rows.emplace_back(ci, std::move(row));
+    writeTables(out, state);
+    progress.update(static_cast<int>(ci + 1));
   }
+  progress.finish();
 
-  // The table: one row per method × setting.
-  std::vector<std::string> header = {"row", "method"};
-  for (const Sweep& s : sweeps) header.push_back(s.key);
-  for (const char* h : {"reference", "frames", "converged_frames", "first_wall_ms", "first_rmse", "first_rel_rmse",
-                        "median_wall_ms", "median_accumulating_wall_ms", "median_converged_wall_ms"})
-    header.push_back(h);
-  for (const std::string& p : passNames) header.push_back("gpu_ms_" + p);
-  for (const char* h : {"last_rmse", "last_rel_rmse", "last_max_error"}) header.push_back(h);
-  if (o.equalTime)
-    for (const char* h : {"equal_time_ms", "equal_time_passes", "equal_time_rel_rmse"}) header.push_back(h);
-  for (const char* h : {"object_pixels", "gpu_bytes", "maps_bytes", "triangles"}) header.push_back(h);
-
-  json jsonRows = json::array(), jsonConvergence = json::array();
-  std::string csv, convergenceCsv = "row,method";
-  for (const Sweep& s : sweeps) convergenceCsv += "," + s.key;
-  convergenceCsv += ",frame,cumulative_wall_ms,rmse,rel_rmse\n";
-  for (std::size_t i = 0; i < header.size(); ++i) {
-    if (i) csv += ',';
-    csv += header[i];
-  }
-  csv += "\n";
-  const Registry registry = parameterRegistry(base.materials);
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const Case& c = cases[r];
-    const RowResult& row = rows[r];
-    const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
-    json settings = json::object();
-    for (std::size_t i = 0; i < sweeps.size(); ++i) settings[sweeps[i].key] = c.values[i];
-    json passMedians = json::object();
-    for (const std::string& p : passNames) {
-      const auto it = row.passMs.find(p);
-      passMedians[p] = it == row.passMs.end() ? json(nullptr) : json(median(it->second));
-    }
-    json values = {{"row", c.name},
-                   {"method", c.method},
-                   {"reference", givenReference ? std::filesystem::path(o.reference).filename().string() : ref.file},
-                   {"frames", row.frames},
-                   {"converged_frames", row.convergedFrames},
-                   {"first_wall_ms", row.firstWallMs},
-                   {"first_rmse", row.firstError.rmse},
-                   {"first_rel_rmse", row.firstError.relRmse},
-                   {"median_wall_ms", median(row.wallMs)},
-                   {"median_accumulating_wall_ms", optionalNumber(row.accumulatingMs)},
-                   {"median_converged_wall_ms", optionalNumber(row.convergedMs)},
-                   {"last_rmse", row.lastError.rmse},
-                   {"last_rel_rmse", row.lastError.relRmse},
-                   {"last_max_error", row.lastError.maxError},
-                   {"object_pixels", row.lastError.pixels},
-                   {"gpu_bytes", row.gpuBytes},
-                   {"maps_bytes", row.mapsBytes ? json(*row.mapsBytes) : json(nullptr)},
-                   {"triangles", row.triangles}};
-    if (row.equalTimeError) {
-      values["equal_time_ms"] = row.equalTimeMs;
-      values["equal_time_passes"] = row.equalTimePasses;
-      values["equal_time_rel_rmse"] = row.equalTimeError->relRmse;
-    }
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      const std::string& h = header[i];
-      json v = values.contains(h) ? values[h] : settings.contains(h) ? settings[h] : json(nullptr);
-      if (h.rfind("gpu_ms_", 0) == 0) v = passMedians[h.substr(7)];
-      if (i) csv += ',';
-      csv += cell(v);
-    }
-    csv += "\n";
-    json convergence = json::array();
-    for (const FramePoint& p : row.convergence) {
-      convergenceCsv += c.name + "," + c.method;
-      for (const std::string& v : c.values) convergenceCsv += "," + v;
-      convergenceCsv += "," + std::to_string(p.index) + "," + formatNumber(p.cumulativeMs) + "," +
-                        formatNumber(p.error.rmse) + "," + formatNumber(p.error.relRmse) + "\n";
-      convergence.push_back({{"frame", p.index}, {"cumulative_wall_ms", p.cumulativeMs}, {"rmse", p.error.rmse},
-                             {"rel_rmse", p.error.relRmse}});
-    }
-    values["settings"] = settings;
-    values["gpu_ms_median"] = passMedians;
-    values["wall_ms"] = row.wallMs;
-    values["first_error"] = errorJson(row.firstError);
-    values["last_error"] = errorJson(row.lastError);
-    if (row.equalTimeError) values["equal_time_error"] = errorJson(*row.equalTimeError);
-    if (row.receiverError) values["receiver_error"] = errorJson(*row.receiverError);
-    values["parameters"] = registry.snapshot(c.loaded.config);
-    jsonRows.push_back(values);
-    jsonConvergence.push_back({{"row", c.name}, {"frames", convergence}});
-  }
-
-  json references = json::array();
-  for (const ReferenceGroup& g : groups) {
-    json s = json::object();
-    for (const auto& [k, v] : g.settings) s[k] = v;
-    json entry = g.info;
-    entry["settings"] = s;
-    entry["object_pixels"] = g.objectPixels;
-    references.push_back(entry);
-  }
-  const json result = {
-      {"command", "bench"},
-      {"preset", base.presetName},
-      {"width", width},
-      {"height", height},
-      {"time_s", o.timeS},
-      {"sets", o.scene.sets},
-      {"sweeps", o.sweeps},
-      {"methods", methods},
-      {"min_frames", o.frames},
-      {"equal_time", o.equalTime},
-      {"receivers", o.receivers},
-      {"gpu",
-       {{"backend", std::string(gpu::glBackendName(context->backend()))},
-        {"GL_RENDERER", context->info().renderer},
-        {"GL_VERSION", context->info().version}}},
-      {"cpu", {{"model", cpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}}},
-      {"reference_method", kReferenceMethod},
-      {"references", references},
-      {"error_metric",
-       "over object pixels (reference standard-error alpha >= 0.5): e_p = sqrt(dr^2+dg^2+db^2); rmse = "
-       "sqrt(mean e_p^2); rel_rmse = rmse / sqrt(mean (r^2+g^2+b^2) of the reference); max = max e_p"},
-      {"rows", jsonRows},
-      {"convergence", jsonConvergence}};
-
-  // Everything ran: write.
+  state.state = interrupted() ? "interrupted" : "complete";
   std::filesystem::create_directories(out);
-  if (!givenReference)
-    for (const ReferenceGroup& g : groups) {
-      gpu::writeExr(out / g.file, g.radiance, gpu::ExrPixelType::Float, {{"tallow.preset", base.presetName}});
-      gpu::writeExr(standardErrorPath(out / g.file), g.standardError, gpu::ExrPixelType::Float,
-                    {{"tallow.preset", base.presetName}});
+  writeTables(out, state);
+  if (figures && !state.rows.empty()) {
+    std::vector<SpeedErrorPoint> points;
+    for (const auto& [index, row] : state.rows) {
+      const Case& c = cases[index];
+      SpeedErrorPoint p;
+      p.method = c.method;
+      p.style = static_cast<int>(std::find(allMethods.begin(), allMethods.end(), c.method) - allMethods.begin());
+      for (std::size_t i = 0; i < sweeps.size(); ++i) p.label += (i ? ", " : "") + c.values[i];
+      p.ms = median(row.wallMs);
+      p.error = row.lastError.relRmse;
+      points.push_back(p);
     }
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const Case& c = cases[r];
-    const RowResult& row = rows[r];
-    const ReferenceGroup& ref = groups[static_cast<std::size_t>(c.group)];
-    const gpu::ToneMapSettings& toneMap = c.loaded.config.render.toneMap;
-    gpu::writePng(out / (c.name + "_first.png"), row.first, toneMap);
-    gpu::writePng(out / (c.name + "_last.png"), row.last, toneMap);
-    gpu::writeExr(out / (c.name + "_last.exr"), row.last, gpu::ExrPixelType::Float);
-    // |Δ| on the images' own scale, so that the rows' pictures compare with each other.
-    gpu::writePng(out / (c.name + "_diff.png"), gpu::differenceImage(row.last, ref.radiance, ref.standardError), toneMap);
-    const gpu::Image firstDiff = gpu::differenceImage(row.first, ref.radiance, ref.standardError);
-    std::vector<const gpu::Image*> panels = {&ref.radiance, &row.first, &firstDiff};
-    if (row.equalTimeError) panels.push_back(&row.equalTimeImage);
-    gpu::writePng(out / (c.name + "_equal_time.png"), strip(panels), toneMap);
+    std::vector<ReferenceLine> lines;
+    for (const ReferenceGroup& g : groups) {
+      std::string label = "reference ε " + percent(g.relError());
+      for (const auto& [k, v] : g.settings) label += (label.find('(') == std::string::npos ? " (" : ", ") + k + "=" + v;
+      if (!g.settings.empty()) label += ")";
+      lines.push_back({g.relError(), label});
+    }
+    const std::filesystem::path absolute = std::filesystem::absolute(out);
+    writeSpeedErrorPlot(absolute / "speed_error.gp", absolute / "speed_error.png", base.presetName, points, lines);
+    writeConvergencePlot(out, base.presetName);
   }
-  gpu::writeTextFileAtomically(out / "bench.csv", csv);
-  gpu::writeTextFileAtomically(out / "convergence.csv", convergenceCsv);
-  gpu::writeTextFileAtomically(out / "bench.json", result.dump(2) + "\n");
-  writePlots(out, base.presetName, !rows.empty());
+  if (interrupted()) {
+    std::fprintf(stderr, "tallow: bench stopped by %s after %zu of %zu row(s); wrote them to %s\n", interruptName(),
+                 state.rows.size(), cases.size(), out.string().c_str());
+    return interruptExitCode();
+  }
   std::printf("tallow: bench of %s (%dx%d, %zu row(s), %s) -> %s\n", base.presetName.c_str(), width, height,
-              rows.size(), context->info().renderer.c_str(), out.string().c_str());
+              state.rows.size(), context->info().renderer.c_str(), out.string().c_str());
   return 0;
 }
 

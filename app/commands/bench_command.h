@@ -2,7 +2,10 @@
 // `tallow bench`: speed against error (issue 6). For every method and every combination of the
 // swept settings, times the frames after a warm-up frame and a restart of the accumulation, and
 // compares each frame with a converged CPU reference (`tallow reference`) over the object pixels:
-// bench.csv, convergence.csv, bench.json, pictures and, with gnuplot, plots. docs/commands.md.
+// bench.csv, convergence.csv, bench.json, one folder of pictures per row (rows/<row>/) and, with
+// gnuplot, plots. Each reference and each row is written as soon as it is done (the tables and
+// bench.json rewritten whole); SIGINT or SIGTERM stops after the reference pass in hand or drops
+// the row in hand, writes what is done and exits with 130 or 143. docs/commands.md.
 #include <limits>
 #include <string>
 #include <vector>
@@ -47,8 +50,8 @@ struct Sweep {
 /// value. The key itself is checked later, by the registry.
 Sweep parseSweep(const std::string& text);
 
-/// Returns the exit code; throws InputError / std::runtime_error with one line. Nothing is written
-/// before every row has run; every file is written atomically.
+/// Returns the exit code; throws InputError / std::runtime_error with one line. Bad input is found
+/// before anything is written; every file is written atomically.
 int runBench(const BenchOptions& options);
 
 }  // namespace tallow::app

@@ -6,8 +6,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/interrupt.h"
+#include "app/commands/progress.h"
 #include "app/commands/video_encoder.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
@@ -57,6 +60,57 @@ std::string frameName(int index, const char* extension) {
 }
 }  // namespace
 
+namespace {
+
+/// The run's summary after its last frame (map coverage, warnings, SSLPV's grid): it reads the frame
+/// back, so it is computed once, when the frames are done (or stopped).
+nlohmann::json finalSummary(const sss::Renderer& renderer, const Config& config) {
+  nlohmann::json summary;
+  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
+    const sss::MapCoverage coverage = renderer.mapCoverage();
+    nlohmann::json pearling = nlohmann::json::array();
+    for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, maps->lightMapSize())) {
+      pearling.push_back({{"object", w.object}, {"band", w.band}, {"mean_free_path_mm", w.meanFreePathMm},
+                          {"light_texel_mm", w.texelMm}});
+      std::fprintf(stderr, "tallow: warning: pearling on %s (band %d): 1/sigma_tr = %.3g mm is below the light "
+                           "G-buffer texel of %.3g mm; raise sss.light_map_size\n",
+                   w.object.c_str(), w.band, w.meanFreePathMm, w.texelMm);
+    }
+    // A point light inside a translucent object's bounds with planar sampling: the paper's Fig. 4a
+    // noise; allowed (it is how the comparison is made) but said.
+    nlohmann::json warnings = nlohmann::json::array();
+    if (!config.render.sss.stereographic)
+      for (const sss::Light& l : config.scene.lights) {
+        if (l.kind != sss::LightKind::Point) continue;
+        const glm::vec3 c = maps->sphere().centre;
+        if (glm::length(l.position - c) < maps->sphere().radius) {
+          const std::string w = "a point light lies inside the translucent objects' bounds with sss.stereographic off: "
+                                "planar sampling of its cube G-buffer is noisy there (the paper's Fig. 4a)";
+          warnings.push_back(w);
+          std::fprintf(stderr, "tallow: warning: %s\n", w.c_str());
+        }
+      }
+    summary = {{"map_bytes", maps->bytes()},
+               {"warnings", warnings},
+               {"light_map_size", maps->lightMapSize()},
+               {"frames_accumulated", maps->frames()},
+               {"translucent_pixels", coverage.translucentPixels},
+               {"unseen_pixels", coverage.unseenPixels},
+               {"unseen_share", coverage.unseenShare()},
+               {"pearling", pearling}};
+  }
+  if (const sss::Sslpv* lpv = renderer.sslpv()) {
+    const sss::SslpvGrid& g = lpv->grid();
+    summary["sslpv"] = {{"grid", g.size},
+                        {"cell_mm", g.cellMm()},
+                        {"origin_m", {g.origin.x, g.origin.y, g.origin.z}},
+                        {"bytes", lpv->bytes()}};
+  }
+  return summary;
+}
+
+}  // namespace
+
 int runCapture(const CaptureOptions& options) {
   if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
   if (options.frames < 1) throw InputError("--frames: must be at least 1");
@@ -78,6 +132,9 @@ int runCapture(const CaptureOptions& options) {
       if (c.frame >= options.frames)
         throw InputError(c.where + ": frame " + std::to_string(c.frame) + " is beyond --frames " +
                          std::to_string(options.frames));
+      // Frames go to the video as they are rendered: its size is fixed by the first.
+      if (!options.video.empty() && c.action == ScriptAction::Set && (c.key == "render.width" || c.key == "render.height"))
+        throw InputError(c.where + ": --video: the script changes the image size, which a video cannot have");
     }
   }
   if (!options.video.empty()) {
@@ -105,119 +162,116 @@ int runCapture(const CaptureOptions& options) {
   run.plan = sss::Renderer::plan(config.scene, config.render);
   run.accumulate = options.accumulate;
   run.parameters = registry.snapshot(config);
+  run.framesRequested = options.frames;
+  run.state = "running";
   if (options.scene.explain) std::fputs(sss::formatPlan(run.plan).c_str(), stdout);
 
-  // Render every frame before writing any file, so that a failure leaves nothing behind.
-  std::vector<gpu::Image> images;
-  std::vector<gpu::ToneMapSettings> toneMaps;
+  // Each frame is written when it is done (PNG, EXR, the video's next frame, stats.json listing it),
+  // so memory does not grow with --frames and a stopped run keeps every frame it finished. Only
+  // the frame before is kept, for the receivers' frame-to-frame change.
+  const InterruptScope interruptScope;
+  Progress progress("capture", "frame", options.frames);
+  std::unique_ptr<VideoEncoder> video;
+  std::optional<gpu::Image> previous;
+  const auto writeStats = [&] { gpu::writeTextFileAtomically(out / "stats.json", toJson(run).dump(2) + "\n"); };
   // Frame i is at start + i / fps unless a script pauses, seeks or changes the speed (no wrapping:
   // a capture past the animation's end shows the time it asks for).
   Playback playback(options.timeS.value_or(config.scene.startS), config.scene.durationS, config.scene.loop);
   nlohmann::json parameters = run.parameters;
-  for (int i = 0; i < options.frames; ++i) {
-    FrameRecord frame;
-    frame.index = i;
-    playback.setFrame(i, options.fps);
-    std::string where;  // the frame's last script command, to locate a change the GPU refuses
-    if (script)
-      for (const ScriptCommand* c : script->at(i)) {
-        applyScriptCommand(*c, config, registry, playback);
-        where = c->where;
+  try {
+    for (int i = 0; i < options.frames && !interrupted(); ++i) {
+      FrameRecord frame;
+      frame.index = i;
+      playback.setFrame(i, options.fps);
+      std::string where;  // the frame's last script command, to locate a change the GPU refuses
+      if (script)
+        for (const ScriptCommand* c : script->at(i)) {
+          applyScriptCommand(*c, config, registry, playback);
+          where = c->where;
+        }
+      if (!where.empty()) {
+        nlohmann::json now = registry.snapshot(config);
+        frame.changed = changedParameters(parameters, now);
+        parameters = std::move(now);
       }
-    if (!where.empty()) {
-      nlohmann::json now = registry.snapshot(config);
-      frame.changed = changedParameters(parameters, now);
-      parameters = std::move(now);
+      frame.timeS = playback.rawTime();
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        // With --accumulate N the frame's time is rendered N times (a paused window's progressive
+        // accumulation); its GPU timings are the sums over those renders, like its wall time.
+        frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+        for (int a = 1; a < options.accumulate; ++a)
+          addTimings(frame.gpu, renderer.render(config.scene, config.render, frame.timeS));
+      } catch (const std::invalid_argument& e) {
+        if (where.empty()) throw;
+        throw InputError(where + ": " + e.what());
+      }
+      frame.sss = mapsRecord(renderer);
+      for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
+        if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
+      glFinish();
+      frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      gpu::Image image = renderer.readRadiance();
+      if (previous) {
+        // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
+        const std::vector<std::uint8_t> receivers = renderer.receiverMask();
+        if (std::any_of(receivers.begin(), receivers.end(), [](std::uint8_t m) { return m != 0; }))
+          frame.receiverChange = gpu::relativeChange(image, *previous, receivers);
+      }
+
+      if (i == 0) std::filesystem::create_directories(out);
+      gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);
+      gpu::writeExr(out / frameName(i, "exr"), image,
+                    options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
+                    {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
+      if (!options.video.empty()) {
+        if (!video) video = std::make_unique<VideoEncoder>(options.video, image.width, image.height, options.fps);
+        video->add(gpu::toneMappedRgb8(image, config.render.toneMap));
+      }
+      frame.rssBytes = residentBytes();
+      run.frames.push_back(std::move(frame));
+      previous = std::move(image);
+      if (i + 1 == options.frames) run.state = "complete";
+      writeStats();
+      progress.update(i + 1);
     }
-    frame.timeS = playback.rawTime();
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      // With --accumulate N the frame's time is rendered N times (a paused window's progressive
-      // accumulation); its GPU timings are the sums over those renders, like its wall time.
-      frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
-      for (int a = 1; a < options.accumulate; ++a) addTimings(frame.gpu, renderer.render(config.scene, config.render, frame.timeS));
-    } catch (const std::invalid_argument& e) {
-      if (where.empty()) throw;
-      throw InputError(where + ": " + e.what());
+    progress.finish();
+    if (interrupted()) {
+      run.state = "interrupted";
+      run.stopReason = interruptName();
     }
-    frame.sss = mapsRecord(renderer);
-    for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
-      if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
-    glFinish();
-    frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    images.push_back(renderer.readRadiance());
-    toneMaps.push_back(config.render.toneMap);  // a script may change the exposure mid-sequence
-    if (i > 0) {
-      // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
-      const std::vector<std::uint8_t> receivers = renderer.receiverMask();
-      if (std::any_of(receivers.begin(), receivers.end(), [](std::uint8_t m) { return m != 0; }))
-        frame.receiverChange = gpu::relativeChange(images[images.size() - 1], images[images.size() - 2], receivers);
+    if (video) video->finish();
+  } catch (const std::exception& e) {
+    // What was written stays (each file whole); stats.json says where and why the run stopped.
+    progress.finish();
+    video.reset();  // no partial video
+    if (!run.frames.empty()) {
+      run.state = "failed";
+      run.stopReason = e.what();
+      try {
+        writeStats();
+      } catch (const std::exception&) {
+        // The error that stopped the run is the one to report.
+      }
     }
-    run.frames.push_back(std::move(frame));
+    throw;
+  }
+  if (run.frames.empty()) {  // stopped before the first frame was done: nothing to write
+    std::fprintf(stderr, "tallow: capture stopped (%s) before the first frame; nothing written\n", interruptName());
+    return interruptExitCode();
   }
   run.gpuBytes = renderer.gpuBytes();
   run.triangles = renderer.triangleCount();  // after the frames: includes the last field extraction
-  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
-    const sss::MapCoverage coverage = renderer.mapCoverage();
-    nlohmann::json pearling = nlohmann::json::array();
-    for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, maps->lightMapSize())) {
-      pearling.push_back({{"object", w.object}, {"band", w.band}, {"mean_free_path_mm", w.meanFreePathMm},
-                          {"light_texel_mm", w.texelMm}});
-      std::fprintf(stderr, "tallow: warning: pearling on %s (band %d): 1/sigma_tr = %.3g mm is below the light "
-                           "G-buffer texel of %.3g mm; raise sss.light_map_size\n",
-                   w.object.c_str(), w.band, w.meanFreePathMm, w.texelMm);
-    }
-    // A point light inside a translucent object's bounds with planar sampling: the paper's Fig. 4a
-    // noise; allowed (it is how the comparison is made) but said.
-    nlohmann::json warnings = nlohmann::json::array();
-    if (!config.render.sss.stereographic)
-      for (const sss::Light& l : config.scene.lights) {
-        if (l.kind != sss::LightKind::Point) continue;
-        const glm::vec3 c = maps->sphere().centre;
-        if (glm::length(l.position - c) < maps->sphere().radius) {
-          const std::string w = "a point light lies inside the translucent objects' bounds with sss.stereographic off: "
-                                "planar sampling of its cube G-buffer is noisy there (the paper's Fig. 4a)";
-          warnings.push_back(w);
-          std::fprintf(stderr, "tallow: warning: %s\n", w.c_str());
-        }
-      }
-    run.sss = {{"map_bytes", maps->bytes()},
-               {"warnings", warnings},
-               {"light_map_size", maps->lightMapSize()},
-               {"frames_accumulated", maps->frames()},
-               {"translucent_pixels", coverage.translucentPixels},
-               {"unseen_pixels", coverage.unseenPixels},
-               {"unseen_share", coverage.unseenShare()},
-               {"pearling", pearling}};
+  run.sss = finalSummary(renderer, config);
+  writeStats();
+  const int written = static_cast<int>(run.frames.size());
+  if (interrupted()) {
+    std::fprintf(stderr, "tallow: capture stopped by %s after %d of %d frame(s); wrote them to %s\n", interruptName(),
+                 written, options.frames, out.string().c_str());
+    return interruptExitCode();
   }
-  if (const sss::Sslpv* lpv = renderer.sslpv()) {
-    const sss::SslpvGrid& g = lpv->grid();
-    run.sss["sslpv"] = {{"grid", g.size},
-                        {"cell_mm", g.cellMm()},
-                        {"origin_m", {g.origin.x, g.origin.y, g.origin.z}},
-                        {"bytes", lpv->bytes()}};
-  }
-
-  if (!options.video.empty())
-    for (const gpu::Image& image : images)
-      if (image.width != images.front().width || image.height != images.front().height)
-        throw InputError("--video: the script changes the image size, which a video cannot have");
-  std::filesystem::create_directories(out);
-  for (int i = 0; i < options.frames; ++i) {
-    const auto& image = images[static_cast<std::size_t>(i)];
-    gpu::writePng(out / frameName(i, "png"), image, toneMaps[static_cast<std::size_t>(i)]);
-    gpu::writeExr(out / frameName(i, "exr"), image, options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
-                  {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
-  }
-  if (!options.video.empty()) {
-    writeVideo(options.video, images.front().width, images.front().height, options.fps, options.frames, [&](int i) {
-      const auto k = static_cast<std::size_t>(i);
-      return gpu::toneMappedRgb8(images[k], toneMaps[k]);
-    });
-  }
-  gpu::writeTextFileAtomically(out / "stats.json", toJson(run).dump(2) + "\n");
-  std::printf("tallow: wrote %d frame(s) of %s (%dx%d, %s) to %s\n", options.frames, loaded.presetName.c_str(),
-              run.width, run.height, run.gl.renderer.c_str(), out.string().c_str());
+  std::printf("tallow: wrote %d frame(s) of %s (%dx%d, %s) to %s\n", written, loaded.presetName.c_str(), run.width,
+              run.height, run.gl.renderer.c_str(), out.string().c_str());
   return 0;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // `tallow capture`: renders frames headless and writes DIR/frame_NNNN.png (tone-mapped sRGB),
-// DIR/frame_NNNN.exr (linear) and DIR/stats.json. Nothing is written unless every frame rendered;
-// each file is written whole or not at all.
+// DIR/frame_NNNN.exr (linear) and DIR/stats.json. Bad input is found before the first frame (one
+// line, nothing written); then each frame is written as soon as it is done, stats.json rewritten
+// after it, so memory does not grow with the frame count. SIGINT or SIGTERM ends the run after the
+// frame in hand, with every file whole and the exit status 130 or 143 (app/commands/interrupt.h).
+// Each file is written whole or not at all.
 #include <optional>
 #include <string>
 
@@ -27,8 +30,9 @@ struct CaptureOptions {
   int accumulate = 1;
 };
 
-/// Returns the process exit code; throws InputError / ContextError / ShaderError / runtime_error
-/// with one line on failure.
+/// Returns the process exit code (0; 130 or 143 when a signal stopped it); throws InputError /
+/// ContextError / ShaderError / runtime_error with one line on failure (the frames before it stay,
+/// with stats.json saying where the run stopped).
 int runCapture(const CaptureOptions& options);
 
 /// Throws InputError when `dir` cannot be created or written (checked before rendering).

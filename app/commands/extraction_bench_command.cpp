@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/progress.h"
 #include "app/config/input_error.h"
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
@@ -63,6 +64,8 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
   const gpu::ShaderLibrary library;
 
   nlohmann::json fields = nlohmann::json::array();
+  Progress progress("probe extraction", "case", static_cast<int>(o.fields.size() * o.resolutions.size()));
+  int done = 0;
   for (const auto& name : o.fields) {
     const auto field = makeField(name);
     nlohmann::json rows = nlohmann::json::array();
@@ -114,8 +117,12 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
                       {"cpu_mesh_ms", cpuMedian},
                       {"cpu_triangles", cpuTriangles},
                       {"cpu_triangles_per_s", perSecond(cpuTriangles, cpuMedian)}});
-      std::printf("%-6s %3d³  sample %8.2f ms  gpu %8.2f ms (wall %8.2f)  cpu %8.2f ms  triangles gpu %zu cpu %zu\n",
-                  name.c_str(), n, sampleMs, gpuMedian, wallMedian, cpuMedian, gpuTriangles, cpuTriangles);
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "%-6s %3d³  sample %8.2f ms  gpu %8.2f ms (wall %8.2f)  cpu %8.2f ms  triangles gpu %zu cpu %zu",
+                    name.c_str(), n, sampleMs, gpuMedian, wallMedian, cpuMedian, gpuTriangles, cpuTriangles);
+      progress.print(line, stdout);
+      progress.update(++done);
     }
     fields.push_back({{"field", name},
                       {"time_s", name == "blob" ? kBlobTimeS : kCandleTimeS},

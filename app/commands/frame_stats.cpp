@@ -1,10 +1,15 @@
 #include "app/commands/frame_stats.h"
 #include "sss/maps/radiosity_maps.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <numeric>
+
+#include "app/commands/provenance.h"
 
 namespace tallow::app {
 
@@ -13,6 +18,13 @@ double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+std::size_t residentBytes() {
+  std::ifstream in("/proc/self/statm");
+  std::size_t pages = 0, resident = 0;
+  if (!(in >> pages >> resident)) return 0;
+  return resident * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
 }
 
 nlohmann::json mapsRecord(const sss::Renderer& renderer) {
@@ -49,7 +61,9 @@ nlohmann::json toJson(const RunRecord& run) {
                          return lights;
                        }()},
                       {"changed", f.changed},
-                      {"sss", f.sss}});
+                      {"sss", f.sss},
+                      {"rss_bytes", f.rssBytes}});
+    if (!f.view.is_null()) frames.back()["view"] = f.view;
     if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
     wall.push_back(f.wallMs);
     gpuTotal.push_back(f.gpu.gpuTotalMs);
@@ -59,15 +73,21 @@ nlohmann::json toJson(const RunRecord& run) {
   json plan = json::array();
   for (const auto& p : run.plan)
     plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
+  const json gl = {{"backend", std::string(gpu::glBackendName(run.backend))},
+                   {"GL_VENDOR", run.gl.vendor},
+                   {"GL_RENDERER", run.gl.renderer},
+                   {"GL_VERSION", run.gl.version},
+                   {"GL_SHADING_LANGUAGE_VERSION", run.gl.glsl}};
+  json provenance = provenanceJson();
+  provenance["gl"] = gl;
+  json state = {{"state", run.state}, {"frames_requested", run.framesRequested}, {"frames_written", run.frames.size()}};
+  if (!run.stopReason.empty()) state["stop_reason"] = run.stopReason;
   return {
       {"command", run.command},
+      {"run", state},
+      {"provenance", provenance},
       {"preset", {{"name", run.presetName}, {"path", run.presetPath}}},
-      {"gl",
-       {{"backend", std::string(gpu::glBackendName(run.backend))},
-        {"GL_VENDOR", run.gl.vendor},
-        {"GL_RENDERER", run.gl.renderer},
-        {"GL_VERSION", run.gl.version},
-        {"GL_SHADING_LANGUAGE_VERSION", run.gl.glsl}}},
+      {"gl", gl},
       {"resolution", {run.width, run.height}},
       {"accumulate", run.accumulate},
       {"triangles", run.triangles},

@@ -1,5 +1,6 @@
 #pragma once
-// stats.json: what ran, on which GL, how long each pass took, and every parameter's value.
+// stats.json: what ran, on which GL, how long each pass took, and every parameter's value; where it
+// came from (provenance.h) and whether the run is complete (capture rewrites it after every frame).
 #include <nlohmann/json.hpp>
 
 #include <limits>
@@ -24,7 +25,14 @@ struct FrameRecord {
   nlohmann::json changed = nlohmann::json::object();
   /// The radiosity maps after this frame (null when none): K, F accumulated, their bytes.
   nlohmann::json sss;
+  /// The process's resident memory after the frame (residentBytes; 0: not measured).
+  std::size_t rssBytes = 0;
+  /// The view window's layout and state (app/view/view_layout.h); null for capture.
+  nlohmann::json view;
 };
+
+/// The process's resident set now, in bytes (/proc/self/statm; 0 where it cannot be read).
+std::size_t residentBytes();
 
 /// The radiosity maps' state after a frame, for FrameRecord::sss (null when the renderer has none).
 nlohmann::json mapsRecord(const sss::Renderer& renderer);
@@ -44,6 +52,11 @@ struct RunRecord {
   int accumulate = 1;  ///< renders per frame at its time (capture --accumulate); timings sum them
   nlohmann::json parameters;
   nlohmann::json sss;  ///< radiosity maps of the last frame (null when the method does not run)
+  int framesRequested = 0;  ///< frames asked for (capture --frames; view --frames, 0: until closed)
+  /// "running" (frames remain: capture rewrites stats.json after each), "complete", "interrupted"
+  /// (SIGINT or SIGTERM; the frames listed are written whole) or "failed" (stopReason says why).
+  std::string state = "complete";
+  std::string stopReason;  ///< interrupted: the signal's name; failed: the error's line
 };
 
 double median(std::vector<double> values);

@@ -1,7 +1,10 @@
 #include "app/commands/gnuplot.h"
 
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
+
+#include "gpu/atomic_file.h"
 
 namespace tallow::app {
 namespace {
@@ -31,14 +34,25 @@ bool runGnuplot(const std::filesystem::path& script, const PlotScriptWriter& wri
     writeScript(f, temporaries);
     std::fclose(f);
   }
+  // gnuplot's messages go to a temporary log (removed with it), whose last line says what failed.
+  std::string logName = ".";
+  logName += script.filename().string();
+  logName += ".log";
+  const gpu::PendingFile log(script.parent_path() / logName);
   std::string command = "gnuplot '";
   command += script.string();
-  command += "' 2>/dev/null";
+  command += "' 2>'";
+  command += log.temporary().string();
+  command += "'";
   const int rc = std::system(command.c_str());
   if (!keepScript) std::filesystem::remove(script);
   if (rc != 0) {
     for (const auto& t : temporaries) std::filesystem::remove(t);
-    throw std::runtime_error("gnuplot failed to draw " + what);
+    std::ifstream in(log.temporary());
+    std::string line, last;
+    while (std::getline(in, line))
+      if (line.find_first_not_of(" \t^") != std::string::npos) last = line;
+    throw std::runtime_error("gnuplot failed to draw " + what + (last.empty() ? "" : ": " + last));
   }
   for (std::size_t i = 0; i < outputs.size(); ++i) std::filesystem::rename(temporaries[i], outputs[i]);
   return true;

@@ -18,8 +18,8 @@ bool gnuplotAvailable();
 /// into, `.NAME.tmp` beside it) to `script`, runs gnuplot on it, removes the script unless
 /// `keepScript` (to redraw the plots by hand), and renames every temporary file onto its output;
 /// returns true. Without gnuplot on PATH, prints one note ("wrote the CSV files without plots"),
-/// writes nothing and returns false. Throws std::runtime_error("gnuplot failed to draw " + what)
-/// when gnuplot fails (the temporary files removed).
+/// writes nothing and returns false. Throws std::runtime_error("gnuplot failed to draw " + what +
+/// ": " + gnuplot's last message) when gnuplot fails (the temporary files removed).
 using PlotScriptWriter = std::function<void(std::FILE*, const std::vector<std::filesystem::path>& temporaries)>;
 bool runGnuplot(const std::filesystem::path& script, const PlotScriptWriter& writeScript,
                 const std::vector<std::filesystem::path>& outputs, const std::string& what, bool keepScript = false);

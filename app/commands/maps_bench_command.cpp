@@ -9,6 +9,7 @@
 #include <map>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/progress.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "gpu/atomic_file.h"
@@ -137,6 +138,7 @@ int runProbeMaps(const ProbeMapsOptions& o) {
 
   nlohmann::json rows = nlohmann::json::array();
   std::vector<double> fitX, fitK, fitY;
+  Progress progress("probe maps", "case", static_cast<int>(cases.size()));
   for (const Case& c : cases) {
     const sss::Scene& scene = c.loaded.config.scene;
     const sss::RenderSettings& settings = c.loaded.config.render;
@@ -199,11 +201,16 @@ int runProbeMaps(const ProbeMapsOptions& o) {
     fitX.push_back(static_cast<double>(c.k) * c.n);
     fitK.push_back(static_cast<double>(c.k));
     fitY.push_back(mapsMedian);
-    std::printf("K %3d N %4d  light G-buffer %8.3f ms  maps %9.3f ms  surface %8.3f ms  shaded %8zu texels  "
-                "%.3g evaluations/s  %zu bytes\n",
-                c.k, c.n, passMs(first, "sss.light_gbuffer"), mapsMedian, median(surfaceMs), shaded, perSecond,
-                static_cast<std::size_t>(maps->bytes()));
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "K %3d N %4d  light G-buffer %8.3f ms  maps %9.3f ms  surface %8.3f ms  shaded %8zu texels  "
+                  "%.3g evaluations/s  %zu bytes",
+                  c.k, c.n, passMs(first, "sss.light_gbuffer"), mapsMedian, median(surfaceMs), shaded, perSecond,
+                  static_cast<std::size_t>(maps->bytes()));
+    progress.print(line, stdout);
+    progress.update(static_cast<int>(rows.size()));
   }
+  progress.finish();
   const LinearFit fit = fitLine(fitX, fitY);
   const LinearFit fitByK = fitLine(fitK, fitY);
   const PlaneFit fitBoth = fitPlane(fitK, fitX, fitY);

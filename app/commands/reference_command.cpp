@@ -2,9 +2,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
+#include <functional>
 #include <map>
 #include <stdexcept>
 
+#include "app/commands/interrupt.h"
+#include "app/commands/progress.h"
+#include "app/commands/provenance.h"
 #include "app/config/input_error.h"
 #include "gpu/image_io.h"
 #include "sss/bssrdf/bssrdf.h"
@@ -41,7 +46,37 @@ std::filesystem::path besideOutput(const std::filesystem::path& out, const std::
   return p;
 }
 
+/// "3.1%", or why there is no estimate yet (one pass has no variance).
+std::string errorText(double relError) {
+  if (std::isinf(relError)) return "not known after 1 pass";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * relError);
+  return text;
+}
+
 }  // namespace
+
+ReferenceTracker::ReferenceTracker(const ReferenceOptions& options, Progress& progress)
+    : spp_(options.spp > 0 ? options.spp : 0), target_(std::isnan(options.relError) ? 0.0 : options.relError),
+      progress_(progress) {
+  progress_.setTotal(spp_);
+}
+
+bool ReferenceTracker::operator()(int passes, double relError) {
+  // ε falls as 1/√passes: the passes it needs are passes · (ε / target)², and the stopping rule
+  // waits for sss::ReferenceSettings::minPasses whatever ε says.
+  int total = spp_;
+  if (target_ > 0.0 && std::isfinite(relError) && passes >= 2) {
+    const double needed = std::ceil(passes * (relError / target_) * (relError / target_));
+    const int estimate = static_cast<int>(std::clamp(needed, static_cast<double>(std::max(passes, kMinPasses)), 1e9));
+    total = total > 0 ? std::min(total, estimate) : estimate;
+  }
+  progress_.setTotal(total);
+  std::string detail = "relative standard error " + errorText(relError);
+  if (target_ > 0.0) detail += " (target " + errorText(target_) + ")";
+  progress_.update(passes, detail);
+  return !interrupted();
+}
 
 void validateReferenceOptions(const ReferenceOptions& options) {
   if (options.out.empty()) throw InputError("reference: --out REF.exr is required");
@@ -67,11 +102,11 @@ std::string emergentFlag() {
   return flag;
 }
 
-sss::ReferenceResult computeReference(const ReferenceOptions& options) {
+sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss::ReferenceProgress& progress) {
   validateReferenceOptions(options);
   const LoadedScene loaded = loadScene(options.scene);
   try {
-    return sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options));
+    return sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options), progress);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -84,16 +119,17 @@ int runReference(const ReferenceOptions& options) {
   if (!std::filesystem::is_directory(folder)) throw InputError("--out: folder " + folder.string() + " does not exist");
   const LoadedScene loaded = loadScene(options.scene);
   sss::ReferenceResult r;
-  try {
-    r = sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options),
-                             [](int passes, double err) {
-                               if ((passes & (passes - 1)) == 0)
-                                 std::fprintf(stderr, "tallow: reference pass %d, relative standard error %s\n", passes,
-                                              number(err).c_str());
-                               return true;
-                             });
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
+  // SIGINT/SIGTERM end the integration after the pass in hand; the passes done are written as a
+  // valid reference, its pass count and error in the metadata.
+  const InterruptScope interruptScope;
+  {
+    Progress progress("reference", "pass", 0);
+    ReferenceTracker tracker(options, progress);
+    try {
+      r = sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options), std::ref(tracker));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
   }
   std::map<std::string, std::string> attributes{
       {"tallow.preset", loaded.presetName},
@@ -109,7 +145,12 @@ int runReference(const ReferenceOptions& options) {
       {"tallow.model", std::string(sss::bssrdfModelName(loaded.config.render.sss.model))},
       {"tallow.triangles", std::to_string(r.triangles)},
       {"tallow.seconds", number(r.seconds)},
-      {"tallow.emergent", r.emitterPoints > 0 ? "on" : "off"}};
+      {"tallow.emergent", r.emitterPoints > 0 ? "on" : "off"},
+      {"tallow.version", tallowVersion()},
+      {"tallow.command_line", commandLine()},
+      {"tallow.date", runStartUtc()},
+      {"tallow.complete", interrupted() ? "no" : "yes"}};
+  if (interrupted()) attributes["tallow.stopped_by"] = interruptName();
   if (r.emitterPoints > 0) {
     attributes["tallow.emitter_points"] = std::to_string(r.emitterPoints);
     attributes["tallow.emergent_pixels"] = std::to_string(r.emergentPixels);
@@ -127,11 +168,16 @@ int runReference(const ReferenceOptions& options) {
   if (r.emitterPoints > 0) gpu::writeExr(emergentPath(out), r.emergent, gpu::ExrPixelType::Float, attributes);
   std::printf("tallow: reference of %s (%dx%d): %d pass(es) x %d points, relative standard error %s, %.1f s -> %s\n",
               loaded.presetName.c_str(), r.radiance.width, r.radiance.height, r.passes, r.pointsPerPass,
-              number(r.relError).c_str(), r.seconds, options.out.c_str());
+              errorText(r.relError).c_str(), r.seconds, options.out.c_str());
   if (r.emitterPoints > 0)
     std::printf("tallow: emergent light: %d emitter points per object and pass, %d receiver pixel(s) lit, relative "
                 "standard error %s -> %s\n",
                 r.emitterPoints, r.emergentPixels, number(r.emergentRelError).c_str(), emergentPath(out).string().c_str());
+  if (interrupted()) {
+    std::fprintf(stderr, "tallow: reference stopped by %s after %d pass(es); wrote what they hold (tallow.complete = no)\n",
+                 interruptName(), r.passes);
+    return interruptExitCode();
+  }
   return 0;
 }
 

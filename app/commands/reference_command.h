@@ -3,12 +3,15 @@
 // camera, size and parameters as `capture`, written as REF.exr (32-bit float, linear) and
 // REF_stderr.exr (the per-pixel standard error of the mean), with --emergent also REF_emergent.exr
 // (the light leaving the translucent objects onto the receivers alone), with the passes, points per
-// pass, error estimate and seed in the EXR header. docs/reference.md.
+// pass, error estimate, seed and provenance in the EXR header. Progress (pass, error, time left) on
+// stderr; SIGINT or SIGTERM stops after the pass in hand and writes the passes done, marked
+// tallow.complete = no, with the exit status 130 or 143. docs/reference.md.
 #include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
 
+#include "app/commands/progress.h"
 #include "app/config/setup.h"
 #include "sss/reference/reference_integrator.h"
 
@@ -45,8 +48,24 @@ std::filesystem::path emergentPath(const std::filesystem::path& out);
 /// (CLI11's flag-with-value syntax: `--emergent` gives N, `--emergent=M` gives M).
 std::string emergentFlag();
 
+/// The integrator's progress callback of a command: reports each pass to `progress` (with the
+/// passes the --rel-error target needs, estimated from ε ∝ 1/√passes) and stops the integration
+/// once a stop was requested (app/commands/interrupt.h).
+class ReferenceTracker {
+ public:
+  ReferenceTracker(const ReferenceOptions& options, Progress& progress);
+  bool operator()(int passes, double relError);
+
+ private:
+  /// sss::ReferenceSettings::minPasses: passes the --rel-error stop always waits for.
+  static constexpr int kMinPasses = sss::ReferenceSettings{}.minPasses;
+  int spp_;
+  double target_;
+  Progress& progress_;
+};
+
 /// Loads the scene as `capture` does and integrates it; nothing written.
-sss::ReferenceResult computeReference(const ReferenceOptions& options);
+sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss::ReferenceProgress& progress = {});
 
 /// Returns the exit code; throws InputError / std::runtime_error with one line.
 int runReference(const ReferenceOptions& options);

@@ -13,7 +13,6 @@
 #include <sstream>
 
 #include "app/config/input_error.h"
-#include "gpu/atomic_file.h"
 
 extern char** environ;
 
@@ -93,74 +92,109 @@ void checkVideoOutput(const std::filesystem::path& file) {
     throw InputError("--video: ffmpeg is not installed (apt-get install ffmpeg, or set TALLOW_FFMPEG to its path)");
 }
 
-void writeVideo(const std::filesystem::path& file, int width, int height, double fps, int count,
-                const std::function<std::vector<std::uint8_t>(int)>& frame) {
+VideoEncoder::VideoEncoder(const std::filesystem::path& file, int width, int height, double fps) : file_(file) {
   checkVideoOutput(file);
   const Container& container = *containerOf(file);
   const std::string ffmpeg = findFfmpeg().string();
-  gpu::writeFileAtomically(file, [&](const std::filesystem::path& tmp) {
-    const std::filesystem::path log = tmp.string() + ".log";
-    char rate[32];
-    std::snprintf(rate, sizeof rate, "%.17g", fps);
-    std::vector<std::string> args = {ffmpeg, "-hide_banner", "-loglevel", "error", "-nostdin", "-y",
-                                     "-f", "rawvideo", "-pix_fmt", "rgb24",
-                                     "-s", std::to_string(width) + "x" + std::to_string(height),
-                                     "-r", rate, "-i", "pipe:0",
-                                     "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"};
-    args.insert(args.end(), container.codec.begin(), container.codec.end());
-    args.insert(args.end(), {"-f", container.format, tmp.string()});
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
+  frameBytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
+  output_ = std::make_unique<gpu::PendingFile>(file);
+  log_ = output_->temporary().string() + ".log";
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%.17g", fps);
+  std::vector<std::string> args = {ffmpeg, "-hide_banner", "-loglevel", "error", "-nostdin", "-y",
+                                   "-f", "rawvideo", "-pix_fmt", "rgb24",
+                                   "-s", std::to_string(width) + "x" + std::to_string(height),
+                                   "-r", rate, "-i", "pipe:0",
+                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"};
+  args.insert(args.end(), container.codec.begin(), container.codec.end());
+  args.insert(args.end(), {"-f", container.format, output_->temporary().string()});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
 
-    int pipeFds[2];
-    if (::pipe2(pipeFds, O_CLOEXEC) != 0) throw std::runtime_error("cannot write " + file.string() + ": pipe: " + std::strerror(errno));
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, pipeFds[0], STDIN_FILENO);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    ::close(pipeFds[0]);
-    if (spawned != 0) {
-      ::close(pipeFds[1]);
-      throw std::runtime_error("cannot write " + file.string() + ": cannot run " + ffmpeg + ": " + std::strerror(spawned));
-    }
-    // A dying ffmpeg must not kill us with SIGPIPE: the failed write is reported instead.
-    struct sigaction ignore {}, previous {};
-    ignore.sa_handler = SIG_IGN;
-    sigaction(SIGPIPE, &ignore, &previous);
-    bool fed = true;
-    const auto finish = [&] {
-      ::close(pipeFds[1]);
-      sigaction(SIGPIPE, &previous, nullptr);
-      int status = 0;
-      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      return status;
-    };
-    int status = 0;
-    try {
-      for (int i = 0; i < count && fed; ++i) {
-        const std::vector<std::uint8_t> rgb = frame(i);
-        fed = writeAll(pipeFds[1], rgb.data(), rgb.size());
-      }
-    } catch (...) {
-      ::kill(pid, SIGTERM);
-      finish();
-      std::error_code ec;
-      std::filesystem::remove(log, ec);
-      throw;
-    }
-    status = finish();
-    const std::string error = lastLine(log);
+  int pipeFds[2];
+  if (::pipe2(pipeFds, O_CLOEXEC) != 0)
+    throw std::runtime_error("cannot write " + file.string() + ": pipe: " + std::strerror(errno));
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipeFds[0], STDIN_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  // A process group of its own: the terminal's Ctrl-C goes to Tallow's group only, and Tallow ends
+  // the video itself, with the frames it has.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  const int spawned = posix_spawn(&pid_, ffmpeg.c_str(), &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipeFds[0]);
+  if (spawned != 0) {
+    ::close(pipeFds[1]);
+    pid_ = -1;
     std::error_code ec;
-    std::filesystem::remove(log, ec);
-    if (!fed || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw std::runtime_error("cannot write " + file.string() + ": ffmpeg failed" + (error.empty() ? "" : ": " + error));
-  });
+    std::filesystem::remove(log_, ec);
+    throw std::runtime_error("cannot write " + file.string() + ": cannot run " + ffmpeg + ": " + std::strerror(spawned));
+  }
+  pipe_ = pipeFds[1];
+  // A dying ffmpeg must not kill us with SIGPIPE: the failed write is reported instead.
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &ignore, &previousSigpipe_);
+}
+
+VideoEncoder::~VideoEncoder() { abort(); }
+
+int VideoEncoder::wait() {
+  if (pipe_ >= 0) {
+    ::close(pipe_);
+    sigaction(SIGPIPE, &previousSigpipe_, nullptr);
+  }
+  pipe_ = -1;
+  int status = 0;
+  while (pid_ > 0 && ::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+  return status;
+}
+
+void VideoEncoder::abort() {
+  if (pid_ > 0) {
+    ::kill(pid_, SIGTERM);
+    wait();
+  }
+  std::error_code ec;
+  if (!log_.empty()) std::filesystem::remove(log_, ec);
+  output_.reset();  // removes ffmpeg's temporary unless committed
+}
+
+void VideoEncoder::add(std::span<const std::uint8_t> rgb) {
+  if (rgb.size() != frameBytes_)
+    throw std::runtime_error("cannot write " + file_.string() + ": a frame of another size than the video's");
+  if (fed_) fed_ = writeAll(pipe_, rgb.data(), rgb.size());
+  if (!fed_) {  // ffmpeg stopped reading: its error says why
+    const int status = wait();
+    const std::string error = lastLine(log_);
+    abort();
+    (void)status;
+    throw std::runtime_error("cannot write " + file_.string() + ": ffmpeg failed" + (error.empty() ? "" : ": " + error));
+  }
+  ++frames_;
+}
+
+void VideoEncoder::finish() {
+  const int status = wait();
+  const std::string error = lastLine(log_);
+  std::error_code ec;
+  std::filesystem::remove(log_, ec);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    abort();
+    throw std::runtime_error("cannot write " + file_.string() + ": ffmpeg failed" + (error.empty() ? "" : ": " + error));
+  }
+  output_->commit();
+  output_.reset();
+  log_.clear();
 }
 
 }  // namespace tallow::app

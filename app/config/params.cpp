@@ -67,7 +67,8 @@ Param withDefault(Param p, json value) {
 /// first object's material coefficients, the first light's type, an orthographic camera's height.
 void addSceneEditParams(Registry& r) {
   // The first object's coefficients one by one (mm⁻¹, per band); checked by sss::validateMaterial
-  // as a preset's are. A change renames the material "custom"; setting the value it has keeps the
+  // as a preset's are. A change keeps the measured material's name with a mark, "Marble
+  // (modified)", so the panel still says what it started from; setting the value it has keeps the
   // name (a saved preset re-applies every value).
   const auto material = [&r](std::string key, std::string type, std::string units, std::string help, double min,
                              double max, auto field) {
@@ -94,8 +95,7 @@ void addSceneEditParams(Registry& r) {
       } catch (const std::invalid_argument& e) {
         throw InputError(e.what());
       }
-      m.name = "custom";
-      m.source.clear();
+      m.name = modifiedMaterialName(m.name);
       object.material = m;
     };
     r.add(std::move(p));
@@ -159,6 +159,14 @@ void addSceneEditParams(Registry& r) {
 
 }  // namespace
 
+std::string modifiedMaterialName(const std::string& name) {
+  if (name.empty() || name == "custom") return "custom";
+  if (name.size() >= kModifiedSuffix.size() &&
+      name.compare(name.size() - kModifiedSuffix.size(), kModifiedSuffix.size(), kModifiedSuffix) == 0)
+    return name;
+  return name + std::string(kModifiedSuffix);
+}
+
 Registry parameterRegistry(const sss::MaterialTable& materials) {
   Registry r;
 
@@ -174,8 +182,9 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "Edge length of each light's shadow map.", 16, 16384),
                               2048),
                   [](auto& c) -> auto& { return c.render.shadowMapSize; }));
-  r.add(bind<float>(withDefault(declare("render.shadow_bias", "float", "shadow-map texels along the surface normal",
-                                        "Extra offset of the shadow lookup along the normal, on top of the PCF footprint "
+  r.add(bind<float>(withDefault(declare("render.shadow_bias", "float", "texels",
+                                        "Extra offset of the shadow lookup along the surface normal, in shadow-map "
+                                        "texels, on top of the PCF footprint "
                                         "(pcf_radius + 1 texels, which alone rules out acne on flat surfaces).", 0, 16),
                                 1.5),
                     [](auto& c) -> auto& { return c.render.shadowBias; }));
@@ -290,14 +299,14 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "Edge of each light's G-buffer (a cube face for point lights).", 16, 8192),
                               512),
                   [](auto& c) -> auto& { return c.render.sss.lightMapSize; }));
-  r.add(bind<float>(withDefault(declare("sss.bias", "float", "× bounding radius of the translucent objects",
-                                        "ε_bias: depth offset of the radiosity maps' visibility test (Algorithm 1).", 0,
-                                        1),
+  r.add(bind<float>(withDefault(declare("sss.bias", "float", "× radius",
+                                        "ε_bias: depth offset of the radiosity maps' visibility test (Algorithm 1), in "
+                                        "units of the translucent objects' bounding radius.", 0, 1),
                                 0.01),
                     [](auto& c) -> auto& { return c.render.sss.bias; }));
-  r.add(bind<float>(withDefault(declare("sss.comb", "float", "× bounding radius of the translucent objects",
+  r.add(bind<float>(withDefault(declare("sss.comb", "float", "× radius",
                                         "ε_comb: offset of the map lookup along −n_o, tangent to the map direction "
-                                        "(Algorithm 1).", 0, 1),
+                                        "(Algorithm 1), in units of the translucent objects' bounding radius.", 0, 1),
                                 0.005),
                     [](auto& c) -> auto& { return c.render.sss.comb; }));
   r.add(bind<float>(withDefault(declare("sss.view_weight", "float", "",
@@ -478,7 +487,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       sss::kImageSpaceMaxTile),
                               4),
                   [](auto& c) -> auto& { return c.render.imageSpace.tile; }));
-  r.add(bind<float>(withDefault(declare("image_space.radius", "float", "mean free paths 1/sigma_tr",
+  r.add(bind<float>(withDefault(declare("image_space.radius", "float", "1/σ_tr",
                                         "Radius of the disc of x_o's tangent plane that is integrated (the paper's "
                                         "A'), in mean free paths of the colour band that scatters farthest.", 0.5, 64),
                                 8.0),
@@ -534,7 +543,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     r.add(std::move(p));
   }
   {
-    Param p = declare("light.intensity", "vec3", "W/m² (directional) or W/sr (point)",
+    Param p = declare("light.intensity", "vec3", "W/m² or W/sr",
                       "First light: irradiance of a directional light or intensity of a point light, per band.", 0,
                       kMaxRadiometric);
     p.getter = [](const Config& c) {

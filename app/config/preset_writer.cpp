@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "app/config/input_error.h"
+#include "app/config/params.h"
 #include "gpu/atomic_file.h"
 
 namespace tallow::app {
@@ -51,8 +52,17 @@ std::string presetText(std::string_view sourceText, const Config& config, const 
   for (const Registry::Param& p : registry.params()) {
     const nlohmann::json& v = snapshot.at(p.key);
     if (v.is_null()) continue;
-    if (p.key == "material" && std::find(p.choices.begin(), p.choices.end(), v.get<std::string>()) == p.choices.end())
+    if (p.key == "material") {
+      // "Marble (modified)": the row it came from, which the material.* values written after it
+      // (registry order) then modify again, so the name reads back as well as the coefficients.
+      std::string name = v.get<std::string>();
+      if (name.size() > kModifiedSuffix.size() &&
+          name.compare(name.size() - kModifiedSuffix.size(), kModifiedSuffix.size(), kModifiedSuffix) == 0)
+        name.resize(name.size() - kModifiedSuffix.size());
+      if (std::find(p.choices.begin(), p.choices.end(), name) == p.choices.end()) continue;
+      settings[p.key] = name;
       continue;
+    }
     if (p.key == "light.position" && !scene.lights.empty() && scene.lights.front().follow >= 0) continue;
     settings[p.key] = ordered::parse(v.dump());
   }

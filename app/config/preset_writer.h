@@ -22,8 +22,9 @@ struct PresetState {
 /// `config` was loaded from (its scene.sourcePath); mesh and environment paths that are not
 /// "data:" names are written absolute (from `config`), so the file works from any folder. Values
 /// that do not apply (null in the snapshot), a material name that is not a row of the table (its
-/// coefficients, material.*, carry it), and the position of a light that follows a flame are left
-/// out. Throws InputError when `sourceText` is not a JSON object.
+/// coefficients, material.*, carry it; an edited row, "Marble (modified)", is written as the row,
+/// which the coefficients after it modify again), and the position of a light that follows a
+/// flame are left out. Throws InputError when `sourceText` is not a JSON object.
 std::string presetText(std::string_view sourceText, const Config& config, const Registry& registry,
                        const PresetState& state);
 

@@ -19,7 +19,7 @@ void setCamera(Config& config, const Registry& registry, const sss::Camera& came
 
 bool windowOnly(ScriptAction action) {
   return action == ScriptAction::Debug || action == ScriptAction::Screenshot || action == ScriptAction::SavePreset ||
-         action == ScriptAction::Quit;
+         action == ScriptAction::Key || action == ScriptAction::Quit;
 }
 
 bool applyScriptCommand(const ScriptCommand& c, Config& config, const Registry& registry, Playback& playback) {

@@ -15,11 +15,11 @@ void setCamera(Config& config, const Registry& registry, const sss::Camera& came
 
 /// Applies a command that acts on the configuration, the clock or the camera (set, play, pause,
 /// loop, speed, seek, orbit, pan, zoom) and returns true; returns false, doing nothing, for the
-/// window's own commands (debug, screenshot, save-preset, quit). Throws InputError
+/// window's own commands (debug, screenshot, save-preset, key, quit). Throws InputError
 /// "FILE:LINE:COL: <key>: <message>" when the scene refuses a value.
 bool applyScriptCommand(const ScriptCommand& command, Config& config, const Registry& registry, Playback& playback);
 
-/// The commands only the window runs (true for debug, screenshot, save-preset, quit).
+/// The commands only the window runs (true for debug, screenshot, save-preset, key, quit).
 bool windowOnly(ScriptAction action);
 
 }  // namespace tallow::app

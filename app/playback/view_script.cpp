@@ -21,7 +21,7 @@ constexpr ActionName kActions[] = {
     {"loop", ScriptAction::Loop},   {"speed", ScriptAction::Speed},     {"seek", ScriptAction::Seek},
     {"orbit", ScriptAction::Orbit}, {"pan", ScriptAction::Pan},         {"zoom", ScriptAction::Zoom},
     {"debug", ScriptAction::Debug}, {"screenshot", ScriptAction::Screenshot}, {"save-preset", ScriptAction::SavePreset},
-    {"quit", ScriptAction::Quit},
+    {"key", ScriptAction::Key},     {"quit", ScriptAction::Quit},
 };
 
 // Bounds of the numeric arguments: generous, finite, so nothing downstream overflows.
@@ -237,6 +237,20 @@ Script parseScript(std::string_view text, const std::string& fileName, const Reg
         } catch (const std::invalid_argument& e) {
           in.fail(at, std::string("debug: ") + e.what());
         }
+        break;
+      }
+      case ScriptAction::Key: {
+        in.skipSpaces();
+        const std::size_t at = in.pos();
+        const std::string_view name = in.word();
+        if (name.empty()) in.fail(at, "key: expected a hotkey, e.g. space or ctrl+z");
+        const std::optional<Hotkey> key = parseHotkey(name);
+        if (!key) {
+          std::vector<std::string> names;
+          for (const std::string_view n : hotkeyNames()) names.emplace_back(n);
+          in.fail(at, "key: unknown hotkey " + quote(name) + didYouMean(name, names));
+        }
+        c.hotkey = *key;
         break;
       }
       case ScriptAction::Screenshot:

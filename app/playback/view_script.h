@@ -11,6 +11,7 @@
 //   frame 14 debug map:3               # view only: the debug view (sss/debug_view.h)
 //   frame 20 screenshot shot.png       # view only: .png (the window) or .exr (the radiance)
 //   frame 20 save-preset saved.json    # view only
+//   frame 22 key ctrl+z                # view only: a hotkey, as if pressed (app/playback/hotkeys.h)
 //   frame 30 quit                      # view only: close the window after frame 29
 //
 // Frames count from 0 and must not decrease from line to line. Everything a line can get wrong is
@@ -25,11 +26,12 @@
 #include <vector>
 
 #include "app/config/registry.h"
+#include "app/playback/hotkeys.h"
 #include "sss/debug_view.h"
 
 namespace tallow::app {
 
-enum class ScriptAction { Set, Play, Pause, Loop, Speed, Seek, Orbit, Pan, Zoom, Debug, Screenshot, SavePreset, Quit };
+enum class ScriptAction { Set, Play, Pause, Loop, Speed, Seek, Orbit, Pan, Zoom, Debug, Screenshot, SavePreset, Key, Quit };
 
 struct ScriptCommand {
   int frame = 0;
@@ -41,6 +43,7 @@ struct ScriptCommand {
   bool on = false;          ///< Loop
   sss::DebugView debug;     ///< Debug
   std::string path;         ///< Screenshot, SavePreset
+  Hotkey hotkey = Hotkey::PlayPause;  ///< Key
 };
 
 struct Script {

@@ -2,11 +2,13 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <tuple>
 
 #include "app/commands/capture_command.h"
 #include "app/commands/frame_stats.h"
@@ -14,6 +16,10 @@
 #include "app/config/params.h"
 #include "app/playback/scene_controls.h"
 #include "app/playback/view_script.h"
+#include "app/view/numbered_file.h"
+#include "app/view/view_canvas.h"
+#include "app/view/view_hotkeys.h"
+#include "app/view/view_layout.h"
 #include "app/view/view_mouse.h"
 #include "app/view/view_panel.h"
 #include "app/view/view_session.h"
@@ -34,6 +40,28 @@ constexpr int kFallbackAccumulate = 16;
 using Clock = std::chrono::steady_clock;
 /// Seconds between two counts of the triangles (the count waits for the GPU).
 constexpr double kTriangleSampleS = 0.25;
+/// Frames per second of the ← and → steps without --fps (capture's default rate).
+constexpr double kStepFps = 30.0;
+/// The window is at least this tall, so that the panel beside a small image has room.
+constexpr int kMinWindowHeight = 480;
+/// At most this share of the screen's work area, when the image and panel would be larger (the
+/// image is then shown scaled down).
+constexpr double kMaxScreenShare = 0.95;
+
+/// The window's size for an image of width × height beside the panel (or alone), on this screen.
+std::pair<int, int> windowSizeFor(int width, int height, bool panel) {
+  int w = width + (panel ? static_cast<int>(ViewPanel::kDefaultWidth) : 0);
+  int h = std::max(height, panel ? kMinWindowHeight : 1);
+  if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) {
+    int x = 0, y = 0, areaW = 0, areaH = 0;
+    glfwGetMonitorWorkarea(monitor, &x, &y, &areaW, &areaH);
+    if (areaW > 0 && areaH > 0) {
+      w = std::min(w, static_cast<int>(kMaxScreenShare * areaW));
+      h = std::min(h, static_cast<int>(kMaxScreenShare * areaH));
+    }
+  }
+  return {w, h};
+}
 
 std::filesystem::path folderOf(const std::string& file) {
   const std::filesystem::path parent = std::filesystem::path(file).parent_path();
@@ -127,13 +155,14 @@ int runView(const ViewOptions& options) {
     return runCapture(capture);
   }
 
+  bool panelVisible = !options.hidePanel;
   gpu::ContextOptions contextOptions;
   contextOptions.backend = gpu::GlBackend::Glfw;
-  contextOptions.windowWidth = inputs.width;
-  contextOptions.windowHeight = inputs.height;
+  std::tie(contextOptions.windowWidth, contextOptions.windowHeight) = windowSizeFor(inputs.width, inputs.height, panelVisible);
   contextOptions.title = "Tallow — " + (options.scene.preset.empty() ? defaultPresetName() : options.scene.preset);
   auto context = gpu::GlContext::create(contextOptions);
   GLFWwindow* window = context->window();
+  HotkeyQueue hotkeys(window);  // before ImGui's backend, which passes every key on to it
   const gpu::ShaderLibrary shaders = makeShaderLibrary(options.scene.shaderDir);
   ViewSession session(options.scene, shaders);
   gpu::ImGuiLayer imgui(window);
@@ -141,7 +170,9 @@ int runView(const ViewOptions& options) {
   if (inputs.reference) debugPass.setReference(*inputs.reference);
   sss::DebugView debug = inputs.debug;
   ViewPanel panel;
+  ViewCanvas canvas;
   ViewFeedback feedback;
+  feedback.stepFps = options.fps > 0.0 ? options.fps : kStepFps;
   if (options.scene.explain)
     std::fputs(sss::formatPlan(sss::Renderer::plan(session.config().scene, session.config().render)).c_str(), stdout);
 
@@ -156,14 +187,16 @@ int runView(const ViewOptions& options) {
   run.gl = context->info();
   run.plan = sss::Renderer::plan(session.config().scene, session.config().render);
   run.parameters = session.registry().snapshot(session.config());
+  run.framesRequested = options.frames;
   nlohmann::json parameters = run.parameters;
 
   auto last = Clock::now();
   auto lastTriangles = last - std::chrono::hours(1);
   int width = 0, height = 0;
-  for (int frame = 0; !glfwWindowShouldClose(window) && (options.frames == 0 || frame < options.frames); ++frame) {
+  int imageW = session.config().render.width, imageH = session.config().render.height;
+  for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
     glfwPollEvents();
-    if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS && !imgui.wantsKeyboard()) break;
+    if (glfwWindowShouldClose(window)) break;
     glfwGetFramebufferSize(window, &width, &height);
     if (width == 0 || height == 0) {  // minimised
       --frame;
@@ -181,8 +214,8 @@ int runView(const ViewOptions& options) {
     else if (frame > 0) session.playback().advance(dt);
     ++clockFrame;
 
-    // The script's commands for this frame, then the panel and the mouse: all take effect in the
-    // frame rendered next.
+    // The script's commands for this frame, the hotkeys (pressed since the last frame, then the
+    // script's), then the panel and the mouse: all take effect in the frame rendered next.
     ViewRequests requests;
     std::string scriptWhere;
     bool quit = false;
@@ -195,11 +228,46 @@ int runView(const ViewOptions& options) {
         if (c->action == ScriptAction::Debug) debug = c->debug;
         if (c->action == ScriptAction::Screenshot) requests.screenshots.push_back(c->path);
         if (c->action == ScriptAction::SavePreset) requests.presets.push_back(c->path);
+        if (c->action == ScriptAction::Key) hotkeys.push(c->hotkey);
         if (c->action == ScriptAction::Quit) quit = true;
       }
+    for (const Hotkey key : hotkeys.take()) {
+      Playback& clock = session.playback();
+      switch (key) {
+        case Hotkey::PlayPause:
+          clock.playing() ? clock.pause() : clock.play();
+          break;
+        case Hotkey::StepBack:
+        case Hotkey::StepForward:
+          clock.pause();
+          clock.seek(clock.time() + (key == Hotkey::StepForward ? 1.0 : -1.0) / feedback.stepFps);
+          break;
+        case Hotkey::ResetCamera:
+          session.resetCamera();
+          break;
+        case Hotkey::Screenshot:
+          requests.screenshots.push_back(nextNumberedFile(panel.saveBase(session.presetName()), ".png").string());
+          break;
+        case Hotkey::Undo:
+        case Hotkey::Redo:
+          break;  // below, one at a time in the order pressed
+        case Hotkey::TogglePanel:
+          panelVisible = !panelVisible;
+          break;
+        case Hotkey::Quit:
+          quit = true;
+          break;
+      }
+      if (key == Hotkey::Undo || key == Hotkey::Redo) {  // one at a time, in order
+        const std::string what = key == Hotkey::Undo ? session.undo() : session.redo();
+        feedback.status = what.empty() ? std::string("nothing to ") + (key == Hotkey::Undo ? "undo" : "redo")
+                                       : std::string(key == Hotkey::Undo ? "undid " : "redid ") + what;
+        feedback.statusIsError = false;
+      }
+    }
     if (quit) break;
     imgui.beginFrame();
-    if (!options.hidePanel) {
+    if (panelVisible) {
       const std::string status = panel.draw(session, debug, feedback, requests, width, height);
       if (!status.empty()) {
         feedback.status = status;
@@ -212,18 +280,38 @@ int runView(const ViewOptions& options) {
         feedback.statusIsError = false;
       }
     }
-    mouseCamera(session, height);
-    // A size set in the panel or script resizes the window (the next frame renders at it).
+    if (requests.undo || requests.redo) {  // the panel's buttons
+      const std::string what = requests.undo ? session.undo() : session.redo();
+      feedback.status = (requests.undo ? "undid " : "redid ") + what;
+      feedback.statusIsError = false;
+    }
+    const ViewLayout layout = layoutView(width, height, panelVisible ? panel.width() : 0, session.config().render.width,
+                                         session.config().render.height);
+    mouseCamera(session, layout.image.height);
+    // A size set in the panel or a script: the window grows or shrinks to show it at scale 1.
     const Config& c = session.config();
-    if (c.render.width != width || c.render.height != height) glfwSetWindowSize(window, c.render.width, c.render.height);
+    if (c.render.width != imageW || c.render.height != imageH) {
+      imageW = c.render.width;
+      imageH = c.render.height;
+      const auto [w, h] = windowSizeFor(imageW, imageH, panelVisible);
+      glfwSetWindowSize(window, w, h);
+    }
 
-    feedback.frame = session.render(width, height);
+    feedback.frame = session.render();
     if (!feedback.frame.refused.empty() && !scriptWhere.empty())
       throw InputError(scriptWhere + ": " + feedback.frame.refused);
     panel.record(feedback.frame);
-    feedback.debugNote = debugPass.render(debug, session.renderer(), session.config().scene, session.config().render, 0,
-                                          width, height, options.hidePanel ? 0 : panel.coveredLeft());
+    const Config& shown = session.config();  // as rendered (a refused change was undone)
+    const GLuint picture = canvas.target(shown.render.width, shown.render.height);
+    feedback.debugNote = debugPass.render(debug, session.renderer(), shown.scene, shown.render, picture,
+                                          shown.render.width, shown.render.height);
+    canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
+                   width, height);
     imgui.endFrame();
+    // An edit ends when nothing is held: a slider released, a drag finished. Until then its
+    // intermediate values are one step in the making.
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!ImGui::IsAnyItemActive() && !io.MouseDown[0] && !io.MouseDown[1] && !io.MouseDown[2]) session.commitEdits();
     if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS)) {
       feedback.triangles = session.renderer().triangleCount();
       lastTriangles = now;
@@ -272,6 +360,13 @@ int runView(const ViewOptions& options) {
       record.changed = changedParameters(parameters, now);
       parameters = std::move(now);
       record.sss = mapsRecord(session.renderer());
+      record.view = layoutJson(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width,
+                                          shown.render.height),
+                               width, height);
+      record.view["playing"] = session.playback().playing();
+      record.view["panel_visible"] = panelVisible;
+      record.view["can_undo"] = session.history().canUndo();
+      record.view["can_redo"] = session.history().canRedo();
       run.frames.push_back(std::move(record));
     }
     glfwSwapBuffers(window);
@@ -280,8 +375,8 @@ int runView(const ViewOptions& options) {
   if (!options.stats.empty()) {
     run.presetName = session.presetName();
     run.presetPath = session.presetPath().string();
-    run.width = width;
-    run.height = height;
+    run.width = session.config().render.width;
+    run.height = session.config().render.height;
     run.gpuBytes = session.renderer().gpuBytes();
     run.triangles = session.renderer().triangleCount();
     gpu::writeTextFileAtomically(options.stats, toJson(run).dump(2) + "\n");

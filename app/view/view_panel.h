@@ -1,8 +1,11 @@
 #pragma once
-// The view window's Dear ImGui panel: preset picker, playback (play, pause, scrub, loop, speed),
-// camera reset, feedback (per-pass GPU ms as a rolling graph, wall ms, accumulated frames, GPU
-// memory, triangles, the frame plan), the debug view, saving (screenshot PNG / EXR, preset), and
-// every registry parameter (app/view/view_param_widgets.h).
+// The view window's Dear ImGui panel, along the window's left edge at full height, its width
+// dragged at its right edge (the image keeps the rest of the window, app/view/view_layout.h):
+// preset picker, playback (play, pause, scrub, loop, speed), camera reset, undo and redo, the
+// hotkeys, feedback (per-pass GPU ms and the frame's wall time over the last seconds on a log
+// scale, accumulated frames, GPU memory, triangles, the frame plan), the debug view, saving
+// (numbered screenshots PNG / EXR, preset), and every registry parameter
+// (app/view/view_param_widgets.h).
 #include <deque>
 #include <map>
 #include <string>
@@ -18,6 +21,7 @@ namespace tallow::app {
 struct ViewRequests {
   std::vector<std::string> screenshots;  ///< .png: the window; .exr: the radiance
   std::vector<std::string> presets;
+  bool undo = false, redo = false;  ///< the panel's undo and redo buttons
 };
 
 /// What the window tells the panel about the last frame.
@@ -25,39 +29,52 @@ struct ViewFeedback {
   ViewSession::Frame frame;
   std::size_t triangles = 0;  ///< sampled a few times a second (counting stalls the GPU)
   std::string debugNote;      ///< why the debug view shows the final image instead
-  std::string status;         ///< the last save or load: "wrote x.png", or its error
+  std::string status;         ///< the last save, load or undo: "wrote x.png", or its error
   bool statusIsError = false;
+  double stepFps = 30.0;      ///< frames per second of ← and →
 };
+
+/// The base name the panel saves under by default: "tallow-<preset>" (numbered: -0001.png, …).
+std::string defaultSaveBase(const std::string& presetName);
 
 class ViewPanel {
  public:
-  /// Adds the frame to the rolling timing graph.
+  /// The panel's width when the window opens, in pixels, and its bounds when dragged.
+  static constexpr float kDefaultWidth = 420.0f;
+  static constexpr float kMinWidth = 260.0f;
+  /// At most this share of the window: the image keeps the rest.
+  static constexpr float kMaxShare = 0.7f;
+
+  /// Adds the frame to the timing graph.
   void record(const ViewSession::Frame& frame);
-  /// Builds the panel (between ImGuiLayer::beginFrame and endFrame) for a window of width × height;
-  /// edits act on `session` and `debug`, file requests go to `requests`. Returns a status line to
-  /// show (a load's error) or "".
+  /// Builds the panel (between ImGuiLayer::beginFrame and endFrame) in a window of width × height
+  /// pixels; edits act on `session` and `debug`, file and undo requests go to `requests`. Returns a
+  /// status line to show (a load's error) or "".
   std::string draw(ViewSession& session, sss::DebugView& debug, const ViewFeedback& feedback, ViewRequests& requests,
                    int width, int height);
-  /// Pixels from the window's left edge to the panel's right edge (0 when collapsed or moved away
-  /// from the left edge): where debug views should not put what matters.
-  int coveredLeft() const { return coveredLeft_; }
+  /// The panel's width after the last draw (the user may have dragged it), in pixels.
+  int width() const { return width_; }
+  /// Where saved files go ("tallow-<preset>" until the user types another), numbered on saving.
+  const std::string& saveBase(const std::string& presetName);
 
  private:
   std::string drawPreset(ViewSession& session);
-  void drawPlayback(ViewSession& session);
+  void drawPlayback(ViewSession& session, ViewRequests& requests, double stepFps);
   void drawFeedback(const ViewSession& session, const ViewFeedback& feedback);
   void drawTimingGraph();
   void drawDebugView(const ViewSession& session, sss::DebugView& debug, const ViewFeedback& feedback);
   void drawSave(const ViewSession& session, ViewRequests& requests);
 
   ParamWidgets params_;
-  /// GPU ms of each pass over the last kHistory frames (NaN where it did not run), in first-seen order.
+  /// The timing graph's frames: when each was recorded (seconds on a steady clock) and its wall
+  /// time; GPU ms of each pass (NaN where it did not run), passes in first-seen order.
+  std::deque<double> times_;
+  std::deque<float> wallHistory_;
   std::vector<std::string> passNames_;
   std::map<std::string, std::deque<float>> history_;
-  std::deque<float> wallHistory_;
   std::string saveBase_;
   std::string savedFor_;  ///< the preset saveBase_ was named after
-  int coveredLeft_ = 0;
+  int width_ = static_cast<int>(kDefaultWidth);
 };
 
 }  // namespace tallow::app

@@ -44,6 +44,7 @@ void tooltip(const Registry::Param& p) {
   if (p.type == "int" || p.type == "float" || p.type == "vec3")
     ImGui::Text("range: [%s, %s]", formatNumber(p.min).c_str(), formatNumber(p.max).c_str());
   ImGui::Text("default: %s", p.defaultValue ? p.defaultValue->dump().c_str() : "the preset's");
+  ImGui::TextDisabled("right-click: reset");
   ImGui::PopTextWrapPos();
   ImGui::EndTooltip();
 }
@@ -56,6 +57,16 @@ std::string paramGroup(const std::string& key, const std::vector<std::string>& k
   for (const std::string& k : keys)
     if (k.size() > key.size() && k.compare(0, key.size(), key) == 0 && k[key.size()] == '.') return key;
   return "general";
+}
+
+std::string paramLabel(const Registry::Param& p, const std::string& group) {
+  std::string label = p.key.size() > group.size() && p.key.compare(0, group.size() + 1, group + ".") == 0
+                          ? p.key.substr(group.size() + 1)
+                          : p.key;
+  // A count's unit that repeats its name ("maps [maps]") says nothing.
+  const std::string last = p.key.substr(p.key.rfind('.') == std::string::npos ? 0 : p.key.rfind('.') + 1);
+  if (!p.units.empty() && p.units != last) label += " [" + p.units + "]";
+  return label;
 }
 
 ParamWidget paramWidget(const Registry::Param& p) {
@@ -73,7 +84,19 @@ void ParamWidgets::apply(const Registry::Param& p, const json& value, const Sett
   else errors_[p.key] = refused;
 }
 
-void ParamWidgets::draw(const Registry& registry, const Config& config, const Setter& set) {
+void ParamWidgets::resetMenu(const Registry::Param& p, const json& value, const json& presetValue, const Setter& set) {
+  if (!ImGui::BeginPopupContextItem("reset")) return;
+  const auto item = [&](const char* what, const json& target) {
+    if (target.is_null()) return;
+    const std::string text = std::string(what) + ": " + (target.is_string() ? target.get<std::string>() : target.dump());
+    if (ImGui::MenuItem(text.c_str(), nullptr, false, target != value)) apply(p, target, set);
+  };
+  if (p.defaultValue) item("reset to default", *p.defaultValue);
+  if (!p.defaultValue || presetValue != *p.defaultValue) item("reset to the preset's value", presetValue);
+  ImGui::EndPopup();
+}
+
+void ParamWidgets::draw(const Registry& registry, const Config& config, const json& presetValues, const Setter& set) {
   const std::vector<std::string> keys = registry.keys();
   std::vector<std::string> groups;
   for (const std::string& k : keys) {
@@ -87,10 +110,7 @@ void ParamWidgets::draw(const Registry& registry, const Config& config, const Se
     if (open) {
       for (const Registry::Param& p : registry.params()) {
         if (paramGroup(p.key, keys) != group) continue;
-        const std::string label = p.key.size() > group.size() && p.key.compare(0, group.size() + 1, group + ".") == 0
-                                      ? p.key.substr(group.size() + 1)
-                                      : p.key;
-        drawParam(p, values.at(p.key), label, set);
+        drawParam(p, values.at(p.key), presetValues.value(p.key, json()), paramLabel(p, group), set);
       }
       ImGui::TreePop();
     }
@@ -98,7 +118,8 @@ void ParamWidgets::draw(const Registry& registry, const Config& config, const Se
   }
 }
 
-void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const std::string& label, const Setter& set) {
+void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const json& presetValue,
+                             const std::string& label, const Setter& set) {
   ImGui::PushID(p.key.c_str());
   if (value.is_null()) {
     ImGui::TextDisabled("%s: not in this scene", label.c_str());
@@ -169,6 +190,7 @@ void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const 
     if (changed) apply(p, json::array({floatToJson(v[0]), floatToJson(v[1]), floatToJson(v[2])}), set);
     tooltip(p);
   }
+  resetMenu(p, value, presetValue, set);  // on the widget just drawn (the last item)
   if (const auto e = errors_.find(p.key); e != errors_.end()) {
     ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
     ImGui::TextWrapped("%s", e->second.c_str());

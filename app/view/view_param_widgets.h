@@ -2,10 +2,11 @@
 // The registry's parameters as Dear ImGui widgets (the view window's "Parameters" section), so a
 // parameter added to app/config/params.cpp appears in the panel with no panel code: grouped by the key's
 // prefix ("sss.maps" → sss), one widget chosen from the type — enum: combo; bool: checkbox; int and
-// float: slider (logarithmic over wide positive ranges) or drag box; vec3: three of them — with the
-// help, units, range and default as tooltip. Edits go through a caller-given setter (the registry's
-// set); a refused value is not applied and its one-line message stays under the widget until the
-// next accepted edit of that parameter.
+// float: slider (logarithmic over wide positive ranges) or drag box; vec3: three of them — labelled
+// with its name and unit ("map_size [texels]"), with the help, range and default as tooltip, and a
+// right-click menu that resets it to its default (or the preset's value, where the preset sets it).
+// Edits go through a caller-given setter (the registry's set); a refused value is not applied and
+// its one-line message stays under the widget until the next accepted edit of that parameter.
 #include <nlohmann/json.hpp>
 
 #include <functional>
@@ -26,16 +27,24 @@ std::string paramGroup(const std::string& key, const std::vector<std::string>& k
 enum class ParamWidget { Checkbox, Combo, Slider, LogSlider, Drag };
 ParamWidget paramWidget(const Registry::Param& param);
 
+/// The widget's label: the key without its group, and the unit in brackets when it has one that
+/// does not just repeat the name ("maps", "map_size [texels]", "sigma_a [mm⁻¹]").
+std::string paramLabel(const Registry::Param& param, const std::string& group);
+
 class ParamWidgets {
  public:
   /// Returns "" or the refusal of setting `key` to `value`.
   using Setter = std::function<std::string(const std::string& key, const nlohmann::json& value)>;
 
-  /// Draws every parameter of `registry` with its value in `config` (inside an ImGui window).
-  void draw(const Registry& registry, const Config& config, const Setter& set);
+  /// Draws every parameter of `registry` with its value in `config` (inside an ImGui window);
+  /// `presetValues` (a registry snapshot) is what resetting a parameter without a default restores.
+  void draw(const Registry& registry, const Config& config, const nlohmann::json& presetValues, const Setter& set);
 
  private:
-  void drawParam(const Registry::Param& p, const nlohmann::json& value, const std::string& label, const Setter& set);
+  void drawParam(const Registry::Param& p, const nlohmann::json& value, const nlohmann::json& presetValue,
+                 const std::string& label, const Setter& set);
+  void resetMenu(const Registry::Param& p, const nlohmann::json& value, const nlohmann::json& presetValue,
+                 const Setter& set);
   void apply(const Registry::Param& p, const nlohmann::json& value, const Setter& set);
 
   std::map<std::string, std::string> errors_;   ///< refusals on show, by key

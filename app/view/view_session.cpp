@@ -26,6 +26,8 @@ void ViewSession::start(LoadedScene loaded, std::unique_ptr<sss::Renderer> rende
   playback_.emplace(scene.startS, scene.durationS, scene.loop);
   home_ = scene.camera;
   lastGood_ = loaded_.config;
+  presetValues_ = registry_.snapshot(loaded_.config);
+  history_.emplace(registry_, loaded_.config);
   ++generation_;
 }
 
@@ -58,10 +60,26 @@ std::string ViewSession::set(std::string_view key, const nlohmann::json& value) 
 
 void ViewSession::resetCamera() { setCamera(loaded_.config, registry_, home_); }
 
-ViewSession::Frame ViewSession::render(int width, int height) {
+std::string ViewSession::undo() {
+  history_->commit(loaded_.config);
+  const std::string label = history_->undoLabel();
+  std::optional<Config> restored = history_->undo(loaded_.config);
+  if (!restored) return "";
+  loaded_.config = std::move(*restored);
+  return label;
+}
+
+std::string ViewSession::redo() {
+  history_->commit(loaded_.config);
+  const std::string label = history_->redoLabel();
+  std::optional<Config> restored = history_->redo(loaded_.config);
+  if (!restored) return "";
+  loaded_.config = std::move(*restored);
+  return label;
+}
+
+ViewSession::Frame ViewSession::render() {
   Config& config = loaded_.config;
-  config.render.width = width;
-  config.render.height = height;
   Frame frame;
   frame.timeS = playback_->time();
   const auto start = std::chrono::steady_clock::now();
@@ -71,8 +89,6 @@ ViewSession::Frame ViewSession::render(int width, int height) {
   } catch (const std::invalid_argument& e) {
     frame.refused = e.what();
     config = lastGood_;
-    config.render.width = width;
-    config.render.height = height;
     frame.gpu = renderer_->render(config.scene, config.render, frame.timeS);
   }
   frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "app/config/edit_history.h"
 #include "app/config/registry.h"
 #include "app/config/setup.h"
 #include "app/playback/playback.h"
@@ -35,6 +36,9 @@ class ViewSession {
   const std::filesystem::path& presetPath() const { return loaded_.presetPath; }
   /// Counts the scenes loaded (1 after construction): a new value means a new clock and renderer.
   int generation() const { return generation_; }
+  /// Every parameter's value when the preset was loaded (with --set): what "reset to the preset's
+  /// value" restores, for the parameters whose default is the preset's.
+  const nlohmann::json& presetValues() const { return presetValues_; }
 
   /// Replaces the scene by another preset (a name in the preset folder or a path) at the current
   /// render size, with a new renderer and clock. On failure keeps the current scene and returns the
@@ -47,16 +51,26 @@ class ViewSession {
   /// Back to the camera the preset (with --set) started with.
   void resetCamera();
 
+  /// Records the edits since the last call as one undoable step (app/config/edit_history.h); call it
+  /// when no edit is under way (no widget held, no drag).
+  void commitEdits() { history_->commit(loaded_.config); }
+  const EditHistory& history() const { return *history_; }
+  /// Undoes (redoes) the last edit step, keeping the camera; returns what changed back ("" when
+  /// there was nothing to undo).
+  std::string undo();
+  std::string redo();
+
   struct Frame {
     sss::FrameTimings gpu;
     double wallMs = 0.0;  ///< CPU wall time of render(), which waits for the GPU's timings
     double timeS = 0.0;   ///< animation time rendered
     std::string refused;  ///< the GPU refused the configuration (checkLimits): why, in one line
   };
-  /// Renders the frame at the clock's time, width × height. When the GPU refuses the configuration
-  /// (RadiosityMaps::checkLimits and the like), restores the last configuration that rendered,
-  /// renders that, and says why in Frame::refused.
-  Frame render(int width, int height);
+  /// Renders the frame at the clock's time, at the configuration's render.width × render.height
+  /// (the window shows it scaled to fit, app/view/view_layout.h). When the GPU refuses the
+  /// configuration (RadiosityMaps::checkLimits and the like), restores the last configuration that
+  /// rendered, renders that, and says why in Frame::refused.
+  Frame render();
 
   /// A preset file that reproduces this frame (app/config/preset_writer.h). Throws on failure.
   void savePreset(const std::filesystem::path& file) const;
@@ -71,6 +85,8 @@ class ViewSession {
   LoadedScene loaded_;
   std::string presetText_;  ///< the preset file as loaded, the base of a saved preset
   Registry registry_;
+  nlohmann::json presetValues_;
+  std::optional<EditHistory> history_;  ///< one per scene loaded
   std::unique_ptr<sss::Renderer> renderer_;
   std::optional<Playback> playback_;
   sss::Camera home_;

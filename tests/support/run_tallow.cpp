@@ -1,12 +1,21 @@
 #include "support/run_tallow.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <thread>
+
+#include <cerrno>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "support/temp_dir.h"
+
+extern char** environ;
 
 namespace tallow::test {
 namespace {
@@ -46,6 +55,68 @@ CommandResult runTallow(const std::vector<std::string>& args, const std::vector<
   r.err = slurp(io.path() / "err");
   return r;
 }
+
+TallowProcess::TallowProcess(const std::vector<std::string>& args, const std::vector<std::string>& env) {
+  std::vector<std::string> words = {"/usr/bin/env"};
+  words.insert(words.end(), env.begin(), env.end());
+  words.push_back(TALLOW_TEST_BINARY);
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const std::string out = (io_.path() / "out").string(), err = (io_.path() / "err").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
+  posix_spawn_file_actions_destroy(&actions);
+}
+
+TallowProcess::~TallowProcess() {
+  if (running()) {
+    ::kill(pid_, SIGKILL);
+    wait();
+  }
+}
+
+bool TallowProcess::running() {
+  if (pid_ <= 0 || status_ >= 0) return false;
+  int status = 0;
+  const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+  if (r == 0) return true;
+  status_ = r == pid_ ? (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) : 255;
+  return false;
+}
+
+bool TallowProcess::waitUntil(const std::function<bool()>& ready, std::chrono::seconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end) {
+    if (ready()) return true;
+    if (!running()) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+void TallowProcess::signal(int sig) {
+  if (pid_ > 0) ::kill(pid_, sig);
+}
+
+int TallowProcess::wait() {
+  if (pid_ <= 0) return -1;
+  if (status_ < 0) {
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  return status_;
+}
+
+std::string TallowProcess::out() const { return slurp(io_.path() / "out"); }
+std::string TallowProcess::err() const { return slurp(io_.path() / "err"); }
 
 int lineCount(const std::string& text) {
   std::istringstream in(text);

@@ -1,0 +1,66 @@
+#include "app/commands/compare_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "app/commands/capture_command.h"
+#include "app/commands/comparison_figure.h"
+#include "app/commands/gnuplot.h"
+#include "app/config/input_error.h"
+#include "gpu/image_io.h"
+
+namespace tallow::app {
+namespace {
+
+gpu::Image readInput(const std::string& file, const char* what) {
+  try {
+    return gpu::readExr(file);
+  } catch (const std::exception& e) {
+    throw InputError(std::string(what) + ": " + e.what());
+  }
+}
+
+std::string sizeText(const gpu::Image& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
+
+}  // namespace
+
+int runCompare(const CompareOptions& o) {
+  if (o.out.empty()) throw InputError("compare: --out FIG.png is required");
+  if (std::filesystem::path(o.out).extension() != ".png") throw InputError("--out: expected a .png file, got \"" + o.out + "\"");
+  if (o.captions.size() > 2) throw InputError("--caption: give at most two, for A and B");
+  if (!(o.scale >= 0.0) || !std::isfinite(o.scale)) throw InputError("--scale: must be a positive fraction (0: automatic)");
+  if (!std::isfinite(o.exposureEv) || std::abs(o.exposureEv) > 20.0) throw InputError("--exposure-ev: must be in [-20, 20]");
+  const gpu::Image a = readInput(o.a, o.a.c_str());
+  const gpu::Image b = readInput(o.b, o.b.c_str());
+  if (a.width != b.width || a.height != b.height)
+    throw InputError("compare: " + o.a + " is " + sizeText(a) + " but " + o.b + " is " + sizeText(b));
+  std::optional<gpu::Image> mask;
+  if (!o.mask.empty()) {
+    mask = readInput(o.mask, "--mask");
+    if (mask->width != a.width || mask->height != a.height)
+      throw InputError("--mask: " + o.mask + " is " + sizeText(*mask) + ", the images " + sizeText(a));
+  }
+  const std::filesystem::path out(o.out);
+  checkWritableFolder(out.has_parent_path() ? out.parent_path() : std::filesystem::path("."));
+  if (!gnuplotAvailable()) throw InputError("compare: gnuplot is not installed (apt-get install gnuplot-nox)");
+
+  FigureSpec spec;
+  spec.title = o.title;
+  spec.toneMap.exposureEv = static_cast<float>(o.exposureEv);
+  spec.mask = mask ? &*mask : nullptr;
+  spec.scale = o.scale;
+  const auto caption = [&](std::size_t i, const std::string& file) {
+    return i < o.captions.size() ? o.captions[i] : std::filesystem::path(file).filename().string();
+  };
+  spec.images = {{&a, caption(0, o.a)}, {&b, caption(1, o.b)}};
+  // Short, whatever the captions: the panel is one picture wide.
+  spec.differences = {{&a, &b, "|left − right|", 1}};
+  spec.scaleLabel = "|Δ| / RMS of the right picture";
+  writeComparisonFigure(out, spec);
+  std::printf("tallow: wrote %s\n", o.out.c_str());
+  return 0;
+}
+
+}  // namespace tallow::app

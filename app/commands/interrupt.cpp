@@ -1,0 +1,69 @@
+#include "app/commands/interrupt.h"
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <iterator>
+
+namespace tallow::app {
+namespace {
+
+volatile std::sig_atomic_t gSignal = 0;
+// Written from the handler with write(2), the async-signal-safe way to say something.
+constexpr char kNotice[] =
+    "\ntallow: stopping: finishing the step in hand and writing what is done (again to stop at once)\n";
+constexpr int kSignals[] = {SIGINT, SIGTERM};
+
+void onSignal(int signal) {
+  if (gSignal == 0) {
+    gSignal = signal;
+    const ssize_t ignored = ::write(STDERR_FILENO, kNotice, sizeof kNotice - 1);
+    (void)ignored;
+    return;
+  }
+  // The second request: the default action (the process ends with that signal), now.
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+struct sigaction gPrevious[std::size(kSignals)];
+
+}  // namespace
+
+InterruptScope::InterruptScope() {
+  gSignal = 0;
+  struct sigaction action {};
+  action.sa_handler = onSignal;
+  sigemptyset(&action.sa_mask);
+  // Interrupted reads and writes resume: the flag is looked at between steps, not by every call.
+  action.sa_flags = SA_RESTART;
+  for (std::size_t i = 0; i < std::size(kSignals); ++i) sigaction(kSignals[i], &action, &gPrevious[i]);
+}
+
+InterruptScope::~InterruptScope() {
+  for (std::size_t i = 0; i < std::size(kSignals); ++i) sigaction(kSignals[i], &gPrevious[i], nullptr);
+}
+
+int interruptSignal() { return gSignal; }
+
+int interruptExitCode() { return 128 + gSignal; }
+
+const char* interruptName() {
+  switch (gSignal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case 0:
+      return "";
+    default:
+      return "signal";
+  }
+}
+
+void throwIfInterrupted() {
+  if (gSignal != 0) throw Interrupted();
+}
+
+}  // namespace tallow::app
