@@ -5,6 +5,7 @@
 
 #include "gpu/readback.h"
 #include "sss/field_source.h"
+#include "sss/memory_budget.h"
 
 namespace tallow::sss {
 
@@ -35,6 +36,7 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
   VirtualPointLights::checkLimits(scene, settings);
   ImageSpaceSss::checkLimits(scene, settings);
   Sslpv::checkLimits(scene, settings);
+  checkMemoryBudget(scene, settings);  // after the per-method limits, which name a single setting
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)
