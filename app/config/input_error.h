@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "gpu/file_bytes.h"
 
 namespace tallow::app {
 
@@ -21,17 +24,53 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The whole of a file the user named (a preset, a CSV); InputError naming it when it is a folder,
-/// cannot be opened or fails to read.
-inline std::string readInputFile(const std::filesystem::path& file) {
+[[noreturn]] inline void throwOutOfMemoryReading(const std::filesystem::path& file);
+
+/// The whole of a file the user named (a preset, a script, a CSV); InputError naming it when it is a
+/// folder or not a regular file (/dev/zero), larger than `maxBytes` (the limits of gpu/file_bytes.h,
+/// checked before reading), cannot be opened, fails to read or does not fit in memory.
+inline std::string readInputFile(const std::filesystem::path& file, std::uintmax_t maxBytes = gpu::kMaxTextFileBytes,
+                                 std::string_view what = "a text file") {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec)) throw InputError(file.string() + ": is a folder, not a file");
+  try {
+    gpu::checkInputFile(file, maxBytes, what);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(file.string() + ": read error");
-  return text.str();
+  try {
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(file.string() + ": read error");
+    return text.str();
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(file);
+  }
+}
+
+/// InputError `FILE: out of memory reading it (SIZE)`: a std::bad_alloc while reading or decoding
+/// a file the user named.
+[[noreturn]] inline void throwOutOfMemoryReading(const std::filesystem::path& file) {
+  try {
+    gpu::throwOutOfMemoryReading(file);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+}
+
+/// parse(readInputFile(file, …)): what the file's contents decode to, with a std::bad_alloc in the
+/// decoding (a table or document larger in memory than on disk) named as readInputFile names it.
+template <class Parse>
+auto parseInputFile(const std::filesystem::path& file, Parse&& parse, std::uintmax_t maxBytes = gpu::kMaxTextFileBytes,
+                    std::string_view what = "a text file") {
+  const std::string text = readInputFile(file, maxBytes, what);
+  try {
+    return parse(text);
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(file);
+  }
 }
 
 /// Optimal-string-alignment distance (Levenshtein plus adjacent transpositions, so "mpas" is one
