@@ -4,6 +4,7 @@
 // compares each frame with a converged CPU reference (`tallow reference`) over the object pixels:
 // bench.csv, convergence.csv, bench.json, pictures and, with gnuplot, plots. docs/commands.md.
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct BenchOptions {
   std::vector<std::string> sweeps;   ///< "key=v1,v2,…"
   int frames = kMinBenchFrames;      ///< timed frames; raised to sss.frames + 2 for progressive methods
   std::string reference;             ///< REF.exr (REF_stderr.exr beside it); empty: compute one
-  double refRelError = std::numeric_limits<double>::quiet_NaN();  ///< --ref-rel-error; NaN: not given
+  std::optional<double> refRelError;  ///< --ref-rel-error; unset: not given (a NaN given is refused)
   int refSpp = kNotGiven;            ///< --ref-spp
   int refPoints = 0;                 ///< --ref-points (0: automatic)
   bool equalTime = false;            ///< also run the reference for each row's first-frame time

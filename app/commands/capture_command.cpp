@@ -1,13 +1,11 @@
 #include "app/commands/capture_command.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/option_checks.h"
 #include "app/commands/video_encoder.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
@@ -21,20 +19,6 @@
 #include "sss/renderer.h"
 
 namespace tallow::app {
-
-void checkWritableFolder(const std::filesystem::path& dir) {
-  // The nearest folder that exists must be writable (so the rest can be created).
-  std::filesystem::path probe = std::filesystem::absolute(dir);
-  std::error_code ec;
-  while (!std::filesystem::exists(probe, ec)) {
-    if (!probe.has_parent_path() || probe.parent_path() == probe) break;
-    probe = probe.parent_path();
-  }
-  if (std::filesystem::exists(probe, ec) && !std::filesystem::is_directory(probe, ec))
-    throw InputError("--out: " + probe.string() + " is not a folder");
-  if (::access(probe.c_str(), W_OK | X_OK) != 0)
-    throw InputError("--out: cannot write to " + dir.string() + ": " + std::strerror(errno));
-}
 
 namespace {
 /// Sums `more` into `total` pass by pass (passes absent from `total` are appended).
@@ -59,6 +43,7 @@ int runCapture(const CaptureOptions& options) {
   if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
   if (options.frames < 1) throw InputError("--frames: must be at least 1");
   if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
+  if (options.timeS) checkTime("--time", *options.timeS);
   if (options.accumulate < 1 || options.accumulate > kMaxAccumulate)
     throw InputError("--accumulate: must be between 1 and " + std::to_string(kMaxAccumulate));
   LoadedScene loaded = loadScene(options.scene);
@@ -80,9 +65,7 @@ int runCapture(const CaptureOptions& options) {
   }
   if (!options.video.empty()) {
     checkVideoOutput(options.video);
-    checkWritableFolder(std::filesystem::path(options.video).parent_path().empty()
-                            ? std::filesystem::path(".")
-                            : std::filesystem::path(options.video).parent_path());
+    checkOutputFile("--video", options.video);
   }
 
   gpu::ContextOptions contextOptions;
@@ -145,6 +128,11 @@ int runCapture(const CaptureOptions& options) {
     glFinish();
     frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     images.push_back(renderer.readRadiance());
+    const gpu::PixelCensus census = gpu::censusPixels(images.back());
+    frame.pixels = pixelsRecord(census, options.exrFloat);
+    if (census.nonFinite > 0)
+      std::fprintf(stderr, "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
+                   i, census.nonFinite);
     toneMaps.push_back(config.render.toneMap);  // a script may change the exposure mid-sequence
     if (i > 0) {
       // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
@@ -205,8 +193,12 @@ int runCapture(const CaptureOptions& options) {
   for (int i = 0; i < options.frames; ++i) {
     const auto& image = images[static_cast<std::size_t>(i)];
     gpu::writePng(out / frameName(i, "png"), image, toneMaps[static_cast<std::size_t>(i)]);
-    gpu::writeExr(out / frameName(i, "exr"), image, options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
-                  {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
+    const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
+    if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
+                      {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}}) != asked)
+      std::fprintf(stderr, "tallow: %s: %s pixel(s) beyond half-float's range (%g): written with 32-bit float channels\n",
+                   (out / frameName(i, "exr")).string().c_str(),
+                   run.frames[static_cast<std::size_t>(i)].pixels["beyond_half"].dump().c_str(), double(gpu::kHalfMax));
   }
   if (!options.video.empty()) {
     writeVideo(options.video, images.front().width, images.front().height, options.fps, options.frames, [&](int i) {

@@ -31,7 +31,4 @@ struct CaptureOptions {
 /// with one line on failure.
 int runCapture(const CaptureOptions& options);
 
-/// Throws InputError when `dir` cannot be created or written (checked before rendering).
-void checkWritableFolder(const std::filesystem::path& dir);
-
 }  // namespace tallow::app

@@ -20,6 +20,12 @@ nlohmann::json mapsRecord(const sss::Renderer& renderer) {
   return {{"maps", maps->views().size()}, {"frames_accumulated", maps->frames()}, {"map_bytes", maps->bytes()}};
 }
 
+nlohmann::json pixelsRecord(const gpu::PixelCensus& census, bool floatAsked) {
+  return {{"non_finite", census.nonFinite},
+          {"beyond_half", census.beyondHalf},
+          {"exr", floatAsked || census.beyondHalf > 0 ? "float" : "half"}};
+}
+
 nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after) {
   nlohmann::json out = nlohmann::json::object();
   for (auto it = after.begin(); it != after.end(); ++it)
@@ -48,7 +54,8 @@ nlohmann::json toJson(const RunRecord& run) {
                          return lights;
                        }()},
                       {"changed", f.changed},
-                      {"sss", f.sss}});
+                      {"sss", f.sss},
+                      {"pixels", f.pixels}});
     if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
     wall.push_back(f.wallMs);
     gpuTotal.push_back(f.gpu.gpuTotalMs);

@@ -8,6 +8,7 @@
 
 #include "app/config/config.h"
 #include "gpu/gl_context.h"
+#include "gpu/image_io.h"
 #include "sss/renderer.h"
 
 namespace tallow::app {
@@ -24,7 +25,14 @@ struct FrameRecord {
   nlohmann::json changed = nlohmann::json::object();
   /// The radiosity maps after this frame (null when none): K, F accumulated, their bytes.
   nlohmann::json sss;
+  /// What the image files cannot hold as it is (pixelsRecord; null when not counted).
+  nlohmann::json pixels;
 };
+
+/// stats.json's per-frame "pixels": {"non_finite": NaN or ±Inf pixels, "beyond_half": finite
+/// pixels beyond half-float's range, "exr": "half" or "float", the channels the EXR was written
+/// with: float when asked for, or when a pixel is beyond half's range (gpu::writeExr)}.
+nlohmann::json pixelsRecord(const gpu::PixelCensus& census, bool floatAsked);
 
 /// The radiosity maps' state after a frame, for FrameRecord::sss (null when the renderer has none).
 nlohmann::json mapsRecord(const sss::Renderer& renderer);
