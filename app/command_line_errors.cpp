@@ -114,6 +114,11 @@ std::string describeParseError(const CLI::App& app, const CLI::ParseError& error
   return error.what();
 }
 
+std::string selectedCommandName(const CLI::App& app) {
+  const std::string path = commandPath(selectedCommand(app));
+  return path.empty() ? "view" : path;
+}
+
 CLI::Validator nonEmpty(const std::string& what) {
   return CLI::Validator(
       [what](std::string& value) { return value.empty() ? "empty; " + what : std::string(); }, "NONEMPTY");

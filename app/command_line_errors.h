@@ -12,6 +12,9 @@ namespace tallow::app {
 /// One line (without "tallow: ") for `error`, thrown by app.parse(argc, argv).
 std::string describeParseError(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv);
 
+/// The subcommand the parse selected, as typed ("capture", "probe bssrdf"); "view" when none.
+std::string selectedCommandName(const CLI::App& app);
+
 /// A CLI11 check that refuses an empty value (`--preset ""` would otherwise mean the default
 /// preset, silently): `--preset: empty; give a name from presets/ or a JSON file, or leave
 /// --preset out for the default`.

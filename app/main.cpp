@@ -225,8 +225,8 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     // The readers name the file they were reading; this is what is left: a CPU allocation sized by
     // the command line (images of --size, the reference's buffers) that did not fit.
-    std::fprintf(stderr, "tallow: out of memory: an allocation sized by the command's settings failed (lower --size "
-                         "or the sizes in --set)\n");
+    std::fprintf(stderr, "tallow: %s: out of memory: an allocation sized by the command's settings failed (lower "
+                         "--size or the sizes in --set)\n", tallow::app::selectedCommandName(app).c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tallow: %s\n", e.what());

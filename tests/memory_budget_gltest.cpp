@@ -108,6 +108,11 @@ TEST(MemoryBudgetLimit, TheGpuMemoryComesFromTheDriverOrTheDocumentedDefault) {
 }
 
 TEST(MemoryBudgetLimit, AnAllocationTheDriverCannotHoldIsReportedAsOutOfMemory) {
+#if defined(__SANITIZE_ADDRESS__)
+  // llvmpipe mallocs the storage, and ASan aborts on a request above its 1 TiB maximum instead of
+  // returning the null the driver would answer with GL_OUT_OF_MEMORY.
+  GTEST_SKIP() << "AddressSanitizer aborts on the driver's 8 TiB malloc";
+#endif
   const auto context = gpu::GlContext::create(gpu::ContextOptions{});
   // 2048 layers of 16384² RGBA32F: 8 TiB, within every size limit, beyond any GPU's memory.
   const std::string texture = test::errorOf<gpu::GpuOutOfMemory>(

@@ -131,15 +131,25 @@ inline std::string quote(std::string_view s) {
 inline std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates) {
   constexpr std::size_t kMinPrefix = 3;
   const std::size_t allowed = std::clamp<std::size_t>(word.size() / 3, 1, 3);
+  const auto abbreviates = [&](std::string_view c) {
+    return word.size() >= kMinPrefix && word.size() < c.size() &&
+           std::equal(word.begin(), word.end(), c.begin(), [](char a, char b) {
+             return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           });
+  };
   std::size_t best = std::numeric_limits<std::size_t>::max();
   std::string match;
   for (const std::string& c : candidates) {
     const std::size_t lengthGap = word.size() > c.size() ? word.size() - c.size() : c.size() - word.size();
-    if (lengthGap > allowed && word.size() > c.size()) continue;  // too far, and no abbreviation
-    std::size_t d = editDistance(word, c);
-    if (d > allowed && word.size() >= kMinPrefix && word.size() < c.size() &&
-        editDistance(word, std::string_view(c).substr(0, word.size())) == 0)
-      d = allowed;  // an abbreviation ranks after any typo within the allowance
+    std::size_t d = allowed;
+    if (lengthGap > allowed) {
+      // At least lengthGap edits apart, too many for a typo (and no need to count them, which
+      // for long input is the costly part): only an abbreviation can still match.
+      if (!abbreviates(c)) continue;
+    } else {
+      d = editDistance(word, c);
+      if (d > allowed && abbreviates(c)) d = allowed;  // an abbreviation ranks after any typo within the allowance
+    }
     if (d < best && d <= allowed && d < std::max(word.size(), c.size())) {
       best = d;
       match = c;
