@@ -3,7 +3,9 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
 
+#include "app/command_line_errors.h"
 #include "app/commands/bench_command.h"
 #include "app/commands/capture_command.h"
 #include "app/commands/compare_command.h"
@@ -25,8 +27,13 @@
 
 namespace {
 
+/// `--preset ""` is refused rather than read as "no --preset" (the default preset).
+CLI::Validator presetNamed() {
+  return tallow::app::nonEmpty("give a name from presets/ or a JSON file, or leave --preset out for the default");
+}
+
 void addSceneOptions(CLI::App& cmd, tallow::app::SceneOptions& o) {
-  cmd.add_option("--preset", o.preset, "preset name in presets/ or a path to a JSON file");
+  cmd.add_option("--preset", o.preset, "preset name in presets/ or a path to a JSON file")->check(presetNamed());
   cmd.add_option("--set", o.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
   cmd.add_option("--size", o.size, "image size WIDTHxHEIGHT");
   cmd.add_option("--shader-dir", o.shaderDir, "read shaders from this folder instead of the embedded copy");
@@ -184,7 +191,8 @@ int main(int argc, char** argv) {
 
   tallow::app::ProbeMapsOptions mapsBench;
   auto* mapsBenchCmd = probeCmd->add_subcommand("maps", "cost of the scattered radiosity maps against K and N");
-  mapsBenchCmd->add_option("--preset", mapsBench.scene.preset, "preset name in presets/ or a path to a JSON file");
+  mapsBenchCmd->add_option("--preset", mapsBench.scene.preset, "preset name in presets/ or a path to a JSON file")
+      ->check(presetNamed());
   mapsBenchCmd->add_option("--set", mapsBench.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
   mapsBenchCmd->add_option("--size", mapsBench.scene.size, "image size WIDTHxHEIGHT");
   mapsBenchCmd->add_option("--shader-dir", mapsBench.scene.shaderDir, "read shaders from this folder instead of the embedded copy");
@@ -198,7 +206,7 @@ int main(int argc, char** argv) {
 
   tallow::app::MeshOptions mesh;
   auto* meshCmd = app.add_subcommand("mesh", "write the triangles of the preset's field objects at time T as a PLY (world units)");
-  meshCmd->add_option("--preset", mesh.scene.preset, "preset name in presets/ or a path to a JSON file");
+  meshCmd->add_option("--preset", mesh.scene.preset, "preset name in presets/ or a path to a JSON file")->check(presetNamed());
   meshCmd->add_option("--set", mesh.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
   meshCmd->add_option("--time", mesh.timeS, "animation time [s]");
   meshCmd->add_option("--res", mesh.res, "lattice samples per axis (default: field.res)");
@@ -208,7 +216,7 @@ int main(int argc, char** argv) {
 
   tallow::app::FieldOptions field;
   auto* fieldCmd = app.add_subcommand("field", "evaluate the preset's field (value < 0 inside, gradient) at the points of a CSV");
-  fieldCmd->add_option("--preset", field.scene.preset, "preset name in presets/ or a path to a JSON file");
+  fieldCmd->add_option("--preset", field.scene.preset, "preset name in presets/ or a path to a JSON file")->check(presetNamed());
   fieldCmd->add_option("--set", field.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
   fieldCmd->add_option("--time", field.timeS, "animation time [s]");
   fieldCmd->add_option("--in", field.in, "POINTS.csv (header x,y,z; metres)")->required();
@@ -221,7 +229,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "tallow: %s\n", e.what());
+    std::fprintf(stderr, "tallow: %s\n", tallow::app::describeParseError(app, e, argc, argv).c_str());
     return 2;
   }
 
@@ -240,6 +248,12 @@ int main(int argc, char** argv) {
     if (*meshCmd) return tallow::app::runMesh(mesh);
     if (*fieldCmd) return tallow::app::runField(field);
     return tallow::app::runView(view);
+  } catch (const std::bad_alloc&) {
+    // The readers name the file they were reading; this is what is left: a CPU allocation sized by
+    // the command line (images of --size, the reference's buffers) that did not fit.
+    std::fprintf(stderr, "tallow: %s: out of memory: an allocation sized by the command's settings failed (lower "
+                         "--size or the sizes in --set)\n", tallow::app::selectedCommandName(app).c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tallow: %s\n", e.what());
     return 1;

@@ -11,10 +11,13 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <vector>
+
+#include "gpu/file_bytes.h"
 
 namespace tallow::geometry {
 namespace {
@@ -612,15 +615,20 @@ TriangleMesh readPly(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(name + ": is a directory");
+  gpu::checkInputFile(path, gpu::kMaxMeshFileBytes, "a PLY mesh");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(name + ": " + std::strerror(errno));
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if (size < 0) throw std::runtime_error(name + ": cannot determine the file size");
   in.seekg(0, std::ios::beg);
-  std::string contents(static_cast<std::size_t>(size), '\0');
-  if (!in.read(contents.data(), size)) throw std::runtime_error(name + ": read error");
-  return parsePly(contents, name);
+  try {
+    std::string contents(static_cast<std::size_t>(size), '\0');
+    if (!in.read(contents.data(), size)) throw std::runtime_error(name + ": read error");
+    return parsePly(contents, name);
+  } catch (const std::bad_alloc&) {
+    gpu::throwOutOfMemoryReading(path);
+  }
 }
 
 }  // namespace tallow::geometry

@@ -2,13 +2,79 @@
 
 #include <stdexcept>
 
+#include "gpu/byte_size.h"
+
 namespace tallow::gpu {
+namespace {
+
+/// GL keeps one pending flag per kind of error, so a few reads clear them all; the cap keeps a
+/// lost context (which may report GL_CONTEXT_LOST on every call) from looping.
+constexpr int kMaxPendingErrors = 16;
+
+/// Errors raised before an allocation are not its own: they are dropped, so that the read after
+/// it sees the allocation's error alone. Release builds look at nothing else, and debug builds
+/// have printed them through KHR_debug already.
+void clearPendingErrors() {
+  for (int i = 0; i < kMaxPendingErrors && glGetError() != GL_NO_ERROR; ++i) {
+  }
+}
+
+/// GL_OUT_OF_MEMORY after an allocation becomes GpuOutOfMemory, in every build: without it the
+/// object would exist without storage and the failure would surface later as an incomplete
+/// framebuffer or a black frame. Other errors keep their old course (checkLimits names the sizes
+/// a driver refuses with GL_INVALID_VALUE before anything is allocated).
+void checkAllocation(const std::string& what, std::size_t bytes) {
+  const GLenum error = glGetError();
+  if (error == GL_NO_ERROR) return;
+  clearPendingErrors();
+  if (error == GL_OUT_OF_MEMORY)
+    throw GpuOutOfMemory("GPU out of memory allocating " + what + " (" + formatBytes(bytes) + ")");
+}
+
+const char* formatName(GLenum format) {
+  switch (format) {
+    case GL_R8: return "GL_R8";
+    case GL_RG8: return "GL_RG8";
+    case GL_R16F: return "GL_R16F";
+    case GL_RGBA8: return "GL_RGBA8";
+    case GL_SRGB8_ALPHA8: return "GL_SRGB8_ALPHA8";
+    case GL_R32F: return "GL_R32F";
+    case GL_RG16F: return "GL_RG16F";
+    case GL_R32UI: return "GL_R32UI";
+    case GL_R32I: return "GL_R32I";
+    case GL_DEPTH_COMPONENT16: return "GL_DEPTH_COMPONENT16";
+    case GL_DEPTH_COMPONENT24: return "GL_DEPTH_COMPONENT24";
+    case GL_DEPTH_COMPONENT32F: return "GL_DEPTH_COMPONENT32F";
+    case GL_DEPTH24_STENCIL8: return "GL_DEPTH24_STENCIL8";
+    case GL_R11F_G11F_B10F: return "GL_R11F_G11F_B10F";
+    case GL_RGBA16F: return "GL_RGBA16F";
+    case GL_RG32F: return "GL_RG32F";
+    case GL_RGB32F: return "GL_RGB32F";
+    case GL_RGBA32F: return "GL_RGBA32F";
+    default: return "format";
+  }
+}
+
+const char* targetName(GLenum target) {
+  switch (target) {
+    case GL_TEXTURE_2D: return "2D texture";
+    case GL_TEXTURE_2D_ARRAY: return "2D array texture";
+    case GL_TEXTURE_3D: return "3D texture";
+    case GL_TEXTURE_CUBE_MAP: return "cube map";
+    case GL_TEXTURE_CUBE_MAP_ARRAY: return "cube map array";
+    default: return "texture";
+  }
+}
+
+}  // namespace
 
 Buffer::Buffer(std::size_t bytes, const void* data, GLbitfield flags) : size_(bytes) {
   GLuint id = 0;
   glCreateBuffers(1, &id);
   name_ = detail::GlName<detail::BufferTraits>(id);
+  clearPendingErrors();
   glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+  checkAllocation("a buffer", bytes);
 }
 
 void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
@@ -30,11 +96,27 @@ Texture Texture::make(GLenum target, GLenum format, int w, int h, int d, int lev
   t.height_ = h;
   t.depth_ = d;
   t.levels_ = levels;
+  clearPendingErrors();
   switch (target) {
     case GL_TEXTURE_2D:
     case GL_TEXTURE_CUBE_MAP: glTextureStorage2D(id, levels, format, w, h); break;
     default: glTextureStorage3D(id, levels, format, w, h, d); break;
   }
+  const int layers = target == GL_TEXTURE_CUBE_MAP ? 6 : d;
+  // Appended piece by piece: `"x" + std::string&&` trips GCC 12's false -Wrestrict (bug 105651).
+  std::string what = "a ";
+  what += std::to_string(w);
+  what += 'x';
+  what += std::to_string(h);
+  if (layers > 1) {
+    what += 'x';
+    what += std::to_string(layers);
+  }
+  what += ' ';
+  what += formatName(format);
+  what += ' ';
+  what += targetName(target);
+  checkAllocation(what, bytesFor(target, format, w, h, layers, levels));
   t.setFilter(levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
   t.setWrap(GL_CLAMP_TO_EDGE);
   return t;
@@ -74,14 +156,16 @@ std::size_t bytesPerTexel(GLenum format) {
 }
 }  // namespace
 
-std::size_t Texture::bytes() const {
+std::size_t Texture::bytes() const { return bytesFor(target_, format_, width_, height_, depth_, levels_); }
+
+std::size_t Texture::bytesFor(GLenum target, GLenum format, int width, int height, int depth, int levels) {
   std::size_t total = 0;
-  int w = width_, h = height_, d = depth_;
-  for (int level = 0; level < levels_; ++level) {
-    total += static_cast<std::size_t>(w) * h * d * bytesPerTexel(format_);
+  std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height), d = static_cast<std::size_t>(depth);
+  for (int level = 0; level < levels; ++level) {
+    total += w * h * d * bytesPerTexel(format);
     w = w > 1 ? w / 2 : 1;
     h = h > 1 ? h / 2 : 1;
-    if (target_ == GL_TEXTURE_3D) d = d > 1 ? d / 2 : 1;
+    if (target == GL_TEXTURE_3D) d = d > 1 ? d / 2 : 1;
   }
   return total;
 }

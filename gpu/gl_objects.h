@@ -6,10 +6,19 @@
 #include <glad/gl.h>
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
 namespace tallow::gpu {
+
+/// The driver answered an allocation (a buffer's or texture's storage) with GL_OUT_OF_MEMORY.
+/// what() is one line naming the object and its size, e.g. `GPU out of memory allocating a
+/// 4096x4096x8 GL_RGBA32F 2D array texture (2.7 GiB)`.
+class GpuOutOfMemory : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 namespace detail {
 /// Owns one GL name; Traits::destroy(GLuint) deletes it.
@@ -51,7 +60,8 @@ struct TransformFeedbackTraits { static void destroy(GLuint id) { glDeleteTransf
 class Buffer {
  public:
   Buffer() = default;
-  /// Immutable storage (glNamedBufferStorage) of `bytes`, optionally filled from `data`.
+  /// Immutable storage (glNamedBufferStorage) of `bytes`, optionally filled from `data`. Throws
+  /// GpuOutOfMemory when the driver has no room for it, std::runtime_error on any other GL error.
   Buffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
   GLuint id() const { return name_.id(); }
   std::size_t size() const { return size_; }
@@ -63,7 +73,8 @@ class Buffer {
   std::size_t size_ = 0;
 };
 
-/// A texture of any target with immutable storage.
+/// A texture of any target with immutable storage. The factories throw GpuOutOfMemory when the
+/// driver has no room for the storage, std::runtime_error on any other GL error it raises.
 class Texture {
  public:
   Texture() = default;
@@ -82,6 +93,8 @@ class Texture {
   int depth() const { return depth_; }  ///< depth (3D), layers (arrays), layer-faces (cube arrays), 6 (cube)
   int levels() const { return levels_; }
   std::size_t bytes() const;  ///< GPU memory of all levels, estimated from the format
+  /// bytes() of a texture of this shape before it exists (the memory budget's figure).
+  static std::size_t bytesFor(GLenum target, GLenum format, int width, int height, int depth, int levels);
 
   void setFilter(GLenum minFilter, GLenum magFilter);
   void setWrap(GLenum wrap);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -230,7 +231,11 @@ Image decodeHdr(std::span<const std::uint8_t> data, const std::string& nameForEr
 
 Image readHdr(const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
-  return decodeHdr(bytes, path.string());
+  try {
+    return decodeHdr(bytes, path.string());
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(path);
+  }
 }
 
 }  // namespace tallow::gpu

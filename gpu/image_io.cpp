@@ -21,6 +21,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -588,7 +589,11 @@ void writePngRgb8(const std::filesystem::path& path, int width, int height, std:
 
 Image readPng(const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
-  return readPngFromMemory(bytes, path.string());
+  try {
+    return readPngFromMemory(bytes, path.string());
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(path);
+  }
 }
 
 Image readPngFromMemory(std::span<const std::uint8_t> data, const std::string& nameForErrors) {
@@ -637,9 +642,24 @@ Image readPngFromMemory(std::span<const std::uint8_t> data, const std::string& n
 // -----------------------------------------------------------------------------------------------
 // OpenEXR
 
-void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
-              const std::map<std::string, std::string>& attributes) {
+PixelCensus censusPixels(const Image& image) {
+  PixelCensus census;
+  for (const glm::vec4& p : image.pixels) {
+    bool nonFinite = false, beyond = false;
+    for (int c = 0; c < 4; ++c) {
+      if (!std::isfinite(p[c])) nonFinite = true;
+      else if (std::abs(p[c]) > kHalfMax) beyond = true;
+    }
+    census.nonFinite += nonFinite ? 1 : 0;
+    census.beyondHalf += beyond ? 1 : 0;
+  }
+  return census;
+}
+
+ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
+                      const std::map<std::string, std::string>& attributes) {
   checkPixelCount(path, image);
+  if (type == ExrPixelType::Half && censusPixels(image).beyondHalf > 0) type = ExrPixelType::Float;
   writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
     try {
       const Imf::PixelType pixelType = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
@@ -668,11 +688,16 @@ void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelTyp
       throw std::runtime_error("cannot write " + path.string() + ": " + oneLine(e.what()));
     }
   });
+  return type;
 }
 
 Image readExr(const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
-  return readExrFromMemory(bytes, path.string());
+  try {
+    return readExrFromMemory(bytes, path.string());
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(path);
+  }
 }
 
 Image readExrFromMemory(std::span<const std::uint8_t> data, const std::string& nameForErrors) {
@@ -681,17 +706,27 @@ Image readExrFromMemory(std::span<const std::uint8_t> data, const std::string& n
     MemoryIStream stream(data, nameForErrors);
     Imf::InputFile file(stream);
     return readExrPixels(file, layout);
+  } catch (const std::bad_alloc&) {
+    throw;  // the caller names the file and its size
   } catch (const std::exception& e) {
     fail(nameForErrors, e.what());
   }
 }
 
 std::map<std::string, std::string> readExrStringAttributes(const std::filesystem::path& path) {
-  const std::string name = path.string();
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
   try {
-    scanExrHeaders(bytes);
-    MemoryIStream stream(bytes, name);
+    return readExrStringAttributesFromMemory(bytes, path.string());
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(path);
+  }
+}
+
+std::map<std::string, std::string> readExrStringAttributesFromMemory(std::span<const std::uint8_t> data,
+                                                                     const std::string& nameForErrors) {
+  try {
+    scanExrHeaders(data);
+    MemoryIStream stream(data, nameForErrors);
     Imf::InputFile file(stream);
     std::map<std::string, std::string> attributes;
     const Imf::Header& header = file.header();
@@ -700,8 +735,10 @@ std::map<std::string, std::string> readExrStringAttributes(const std::filesystem
         attributes[it.name()] = static_cast<const Imf::StringAttribute&>(it.attribute()).value();
     }
     return attributes;
+  } catch (const std::bad_alloc&) {
+    throw;  // the caller names the file and its size
   } catch (const std::exception& e) {
-    fail(name, e.what());
+    fail(nameForErrors, e.what());
   }
 }
 

@@ -34,11 +34,23 @@ Image readPngFromMemory(std::span<const std::uint8_t> data, const std::string& n
 
 enum class ExrPixelType { Half, Float };
 
-/// Writes linear RGBA (channels R, G, B, A; ZIP compression) with the given sample type.
+/// Largest finite half-float value; a larger magnitude becomes ±Inf in a half channel.
+inline constexpr float kHalfMax = 65504.0f;
+
+/// Pixels a file format cannot store as they are.
+struct PixelCensus {
+  std::size_t nonFinite = 0;   ///< pixels with a NaN or ±Inf channel
+  std::size_t beyondHalf = 0;  ///< pixels with a finite channel of magnitude above kHalfMax
+};
+PixelCensus censusPixels(const Image& image);
+
+/// Writes linear RGBA (channels R, G, B, A; ZIP compression) with the given sample type, except
+/// that a half file whose image has a finite value beyond kHalfMax is written with float channels
+/// instead, so that a bright pixel never turns into +Inf. Returns the sample type written.
 /// `attributes` become string attributes in the header (e.g. "tallow.spp" → "1024"); a name that
 /// clashes with a standard attribute of another type is an error.
-void writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
-              const std::map<std::string, std::string>& attributes = {});
+ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
+                      const std::map<std::string, std::string>& attributes = {});
 
 /// Reads R, G, B and A (1 where absent) of a single-part flat EXR, any sample type, as float.
 /// The result covers the data window. A file with only a Y channel reads as grey.
@@ -48,5 +60,8 @@ Image readExrFromMemory(std::span<const std::uint8_t> data, const std::string& n
 
 /// Every string attribute in the header of an EXR file (name → value).
 std::map<std::string, std::string> readExrStringAttributes(const std::filesystem::path& path);
+/// readExrStringAttributes on bytes in memory; `nameForErrors` starts every error message.
+std::map<std::string, std::string> readExrStringAttributesFromMemory(std::span<const std::uint8_t> data,
+                                                                     const std::string& nameForErrors);
 
 }  // namespace tallow::gpu

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gpu/embedded_files.h"
+#include "gpu/file_bytes.h"
 
 namespace tallow::gpu {
 
@@ -15,6 +16,11 @@ ShaderLibrary::ShaderLibrary(std::optional<std::filesystem::path> overrideDir)
 std::string ShaderLibrary::read(std::string_view path) const {
   if (overrideDir_) {
     const std::filesystem::path file = *overrideDir_ / std::filesystem::path(path);
+    try {
+      checkInputFile(file, kMaxTextFileBytes, "a shader file");
+    } catch (const std::runtime_error& e) {
+      throw ShaderError(e.what(), "");
+    }
     std::ifstream in(file, std::ios::binary);
     if (!in) throw ShaderError(file.string() + ": cannot read shader file", "");
     std::ostringstream text;

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Configures and builds Tallow into build/ (or $TALLOW_BUILD_DIR). TALLOW_SANITIZE=1 builds with
-# AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/ instead.
+# AddressSanitizer + UndefinedBehaviorSanitizer into build-asan/ instead, TALLOW_SANITIZE=thread with
+# ThreadSanitizer into build-tsan/. TALLOW_BUILD_TARGETS="tallow_tests" builds only those targets.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-if [ "${TALLOW_SANITIZE:-0}" = "1" ]; then
+if [ "${TALLOW_SANITIZE:-0}" = "thread" ]; then
+  build="${TALLOW_BUILD_DIR:-$root/build-tsan}"
+  extra=(-DTALLOW_SANITIZE=thread)
+elif [ "${TALLOW_SANITIZE:-0}" = "1" ]; then
   build="${TALLOW_BUILD_DIR:-$root/build-asan}"
   extra=(-DTALLOW_SANITIZE=ON)
 else
@@ -12,5 +16,7 @@ else
 fi
 jobs="$(nproc 2>/dev/null || echo 2)"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE="${TALLOW_BUILD_TYPE:-Release}" "${extra[@]}" >/dev/null
-cmake --build "$build" -j"$jobs"
+targets=()
+for t in ${TALLOW_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build" -j"$jobs" "${targets[@]}"
 echo "$build"

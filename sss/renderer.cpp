@@ -12,6 +12,7 @@
 #include "sss/peers/sslpv.h"
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
+#include "sss/memory_budget.h"
 
 namespace tallow::sss {
 
@@ -41,6 +42,7 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
   // Every method's limits, whichever is selected: a preset is refused the same way for all of them.
   const FrameState state{scene, settings, 0.0, 0};
   for (const auto& method : makeTranslucencyMethods()) method->checkLimits(state);
+  checkMemoryBudget(scene, settings);  // after the per-method limits, which name a single setting
 }
 
 Renderer::Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings)

@@ -233,7 +233,11 @@ TEST(ReferenceIntegrator, RefusesBadOptions) {
   o.relError = -0.1;
   EXPECT_EQ(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }),
             "--rel-error: must be a positive number");
+  // A NaN given is a bad value (issue 20), not the absence of --rel-error.
   o.relError = std::nan("");
+  EXPECT_EQ(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }),
+            "--rel-error: must be a positive number");
+  o.relError.reset();
   EXPECT_NE(test::errorOf<app::InputError>([&] { app::validateReferenceOptions(o); }).find("--spp S"), std::string::npos);
   sss::ReferenceSettings s;  // the library refuses too
   const app::LoadedScene scene = slab("4x4");

@@ -11,7 +11,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <thread>
 
 #include "app/commands/bench_plot.h"
@@ -22,6 +21,7 @@
 #include "app/commands/interrupt.h"
 #include "app/commands/progress.h"
 #include "app/commands/provenance.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "gpu/atomic_file.h"
@@ -138,14 +138,14 @@ void checkOptions(const BenchOptions& o) {
   if (o.outDir.empty()) throw InputError("bench: --out DIR is required");
   if (o.frames < kMinBenchFrames)
     throw InputError("--frames: must be at least " + std::to_string(kMinBenchFrames));
-  const int given = (o.reference.empty() ? 0 : 1) + (std::isnan(o.refRelError) ? 0 : 1) + (o.refSpp == kNotGiven ? 0 : 1);
+  const int given = (o.reference.empty() ? 0 : 1) + (o.refRelError ? 1 : 0) + (o.refSpp == kNotGiven ? 0 : 1);
   if (given != 1)
     throw InputError("bench: give exactly one of --reference REF.exr, --ref-rel-error E or --ref-spp S");
-  if (!std::isnan(o.refRelError) && !(std::isfinite(o.refRelError) && o.refRelError > 0.0))
+  if (o.refRelError && !(std::isfinite(*o.refRelError) && *o.refRelError > 0.0))
     throw InputError("--ref-rel-error: must be a positive number");
   if (o.refSpp != kNotGiven && o.refSpp < 1) throw InputError("--ref-spp: must be at least 1");
   if (o.refPoints < 0) throw InputError("--ref-points: must be 0 (automatic) or more");
-  if (!std::isfinite(o.timeS)) throw InputError("--time: must be a finite number of seconds");
+  checkTime("--time", o.timeS);
 }
 
 gpu::Image readReferenceImage(const std::filesystem::path& file) {
@@ -518,24 +518,6 @@ void writeRowPictures(const std::filesystem::path& folder, const Case& c, const 
 
 }  // namespace
 
-Sweep parseSweep(const std::string& text) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos) throw InputError("--sweep: expected key=v1,v2,... but got " + quote(text));
-  Sweep s;
-  s.key = text.substr(0, eq);
-  if (s.key.empty()) throw InputError("--sweep: no key before '=' in " + quote(text));
-  std::stringstream values(text.substr(eq + 1));
-  std::string v;
-  while (std::getline(values, v, ',')) s.values.push_back(v);
-  if (!text.empty() && text.back() == ',') s.values.push_back("");
-  if (s.values.empty() || std::any_of(s.values.begin(), s.values.end(), [](const std::string& x) { return x.empty(); }))
-    throw InputError("--sweep: " + s.key + ": give one or more values, separated by commas");
-  if (s.key == "method") throw InputError("--sweep: method: list the methods with --methods");
-  s.knob = (s.key.rfind("sss.", 0) == 0 && s.key != "sss.model") || s.key.rfind("vpl.", 0) == 0 ||
-           s.key.rfind("image_space.", 0) == 0 || s.key.rfind("sslpv.", 0) == 0;
-  return s;
-}
-
 int runBench(const BenchOptions& o) {
   checkOptions(o);
   std::vector<Sweep> sweeps;
@@ -553,8 +535,13 @@ int runBench(const BenchOptions& o) {
   // Every case through the registry before any file or GL work: unknown keys, values out of range
   // and unknown methods give the registry's one line.
   const LoadedScene base = loadScene(o.scene);
+  const Registry registry = parameterRegistry(base.materials);
+  // --methods and --sweep each under its own name before they are combined into the rows' settings.
+  checkMethods(registry, o.methods);
+  for (std::size_t i = 0; i < sweeps.size(); ++i)
+    for (const std::string& v : sweeps[i].values) checkSweepValue(registry, base.config, o.sweeps[i], sweeps[i].key, v);
   std::vector<std::string> methods = o.methods;
-  if (methods.empty()) methods = parameterRegistry(base.materials).find("method")->choices;
+  if (methods.empty()) methods = registry.find("method")->choices;
   std::vector<Case> cases;
   std::vector<ReferenceGroup> groups;
   std::map<std::vector<std::string>, int> groupOf;
@@ -673,7 +660,6 @@ int runBench(const BenchOptions& o) {
   if (!figures) std::fprintf(stderr, "tallow: gnuplot is not installed: no comparison pictures and no plots\n");
 
   // The rows, each written when it is done (its pictures, then the tables of every row so far).
-  const Registry registry = parameterRegistry(base.materials);
   const std::vector<std::string>& allMethods = registry.find("method")->choices;
   Progress progress("bench", "row", static_cast<int>(cases.size()));
   for (std::size_t ci = 0; ci < cases.size() && !interrupted(); ++ci) {

@@ -7,6 +7,7 @@
 // bench.json rewritten whole); SIGINT or SIGTERM stops after the reference pass in hand or drops
 // the row in hand, writes what is done and exits with 130 or 143. docs/commands.md.
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,7 @@ struct BenchOptions {
   std::vector<std::string> sweeps;   ///< "key=v1,v2,…"
   int frames = kMinBenchFrames;      ///< timed frames; raised to sss.frames + 2 for progressive methods
   std::string reference;             ///< REF.exr (REF_stderr.exr beside it); empty: compute one
-  double refRelError = std::numeric_limits<double>::quiet_NaN();  ///< --ref-rel-error; NaN: not given
+  std::optional<double> refRelError;  ///< --ref-rel-error; unset: not given (a NaN given is refused)
   int refSpp = kNotGiven;            ///< --ref-spp
   int refPoints = 0;                 ///< --ref-points (0: automatic)
   bool equalTime = false;            ///< also run the reference for each row's first-frame time

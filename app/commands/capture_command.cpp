@@ -1,7 +1,5 @@
 #include "app/commands/capture_command.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +9,7 @@
 #include "app/commands/frame_stats.h"
 #include "app/commands/interrupt.h"
 #include "app/commands/progress.h"
+#include "app/commands/option_checks.h"
 #include "app/commands/video_encoder.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
@@ -26,20 +25,6 @@
 #include "sss/renderer.h"
 
 namespace tallow::app {
-
-void checkWritableFolder(const std::filesystem::path& dir) {
-  // The nearest folder that exists must be writable (so the rest can be created).
-  std::filesystem::path probe = std::filesystem::absolute(dir);
-  std::error_code ec;
-  while (!std::filesystem::exists(probe, ec)) {
-    if (!probe.has_parent_path() || probe.parent_path() == probe) break;
-    probe = probe.parent_path();
-  }
-  if (std::filesystem::exists(probe, ec) && !std::filesystem::is_directory(probe, ec))
-    throw InputError("--out: " + probe.string() + " is not a folder");
-  if (::access(probe.c_str(), W_OK | X_OK) != 0)
-    throw InputError("--out: cannot write to " + dir.string() + ": " + std::strerror(errno));
-}
 
 namespace {
 /// Sums `more` into `total` pass by pass (passes absent from `total` are appended).
@@ -115,6 +100,7 @@ int runCapture(const CaptureOptions& options) {
   if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
   if (options.frames < 1) throw InputError("--frames: must be at least 1");
   if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
+  if (options.timeS) checkTime("--time", *options.timeS);
   if (options.accumulate < 1 || options.accumulate > kMaxAccumulate)
     throw InputError("--accumulate: must be between 1 and " + std::to_string(kMaxAccumulate));
   LoadedScene loaded = loadScene(options.scene);
@@ -139,9 +125,7 @@ int runCapture(const CaptureOptions& options) {
   }
   if (!options.video.empty()) {
     checkVideoOutput(options.video);
-    checkWritableFolder(std::filesystem::path(options.video).parent_path().empty()
-                            ? std::filesystem::path(".")
-                            : std::filesystem::path(options.video).parent_path());
+    checkOutputFile("--video", options.video);
   }
 
   gpu::ContextOptions contextOptions;
@@ -212,6 +196,12 @@ int runCapture(const CaptureOptions& options) {
       glFinish();
       frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       gpu::Image image = renderer.readRadiance();
+      const gpu::PixelCensus census = gpu::censusPixels(image);
+      frame.pixels = pixelsRecord(census, options.exrFloat);
+      if (census.nonFinite > 0)
+        std::fprintf(stderr,
+                     "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
+                     i, census.nonFinite);
       if (previous) {
         // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
         const std::vector<std::uint8_t> receivers = renderer.receiverMask();
@@ -221,9 +211,13 @@ int runCapture(const CaptureOptions& options) {
 
       if (i == 0) std::filesystem::create_directories(out);
       gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);
-      gpu::writeExr(out / frameName(i, "exr"), image,
-                    options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half,
-                    {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}});
+      const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
+      if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
+                        {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}}) != asked)
+        std::fprintf(stderr,
+                     "tallow: %s: %s pixel(s) beyond half-float's range (%g): written with 32-bit float channels\n",
+                     (out / frameName(i, "exr")).string().c_str(), frame.pixels["beyond_half"].dump().c_str(),
+                     double(gpu::kHalfMax));
       if (!options.video.empty()) {
         if (!video) video = std::make_unique<VideoEncoder>(options.video, image.width, image.height, options.fps);
         video->add(gpu::toneMappedRgb8(image, config.render.toneMap));

@@ -35,7 +35,4 @@ struct CaptureOptions {
 /// with stats.json saying where the run stopped).
 int runCapture(const CaptureOptions& options);
 
-/// Throws InputError when `dir` cannot be created or written (checked before rendering).
-void checkWritableFolder(const std::filesystem::path& dir);
-
 }  // namespace tallow::app

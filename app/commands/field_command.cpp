@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "gpu/atomic_file.h"
 #include "sss/scene_geometry.h"
@@ -48,9 +49,12 @@ std::vector<FieldSample> evaluateFields(const std::vector<PlacedField>& fields, 
 int runField(const FieldOptions& options) {
   if (options.in.empty()) throw InputError("field: --in POINTS.csv is required");
   if (options.out.empty()) throw InputError("field: --out VALUES.csv is required");
-  if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
+  checkTime("--time", options.timeS);
+  checkOutputFile("--out", options.out);
   const LoadedScene loaded = loadScene(options.scene);
-  const std::vector<glm::dvec3> points = parsePoints(readInputFile(options.in), options.in);
+  const std::vector<glm::dvec3> points = parseInputFile(
+      options.in, [&](const std::string& text) { return parsePoints(text, options.in); }, gpu::kMaxTableFileBytes,
+      "a CSV table");
   const std::vector<PlacedField> fields = placeFields(loaded.config.scene, loaded.presetName);
   const std::vector<FieldSample> samples = evaluateFields(fields, options.timeS, points);
   gpu::writeTextFileAtomically(options.out, formatFieldValues(points, samples));

@@ -33,6 +33,12 @@ nlohmann::json mapsRecord(const sss::Renderer& renderer) {
   return {{"maps", maps->views().size()}, {"frames_accumulated", maps->frames()}, {"map_bytes", maps->bytes()}};
 }
 
+nlohmann::json pixelsRecord(const gpu::PixelCensus& census, bool floatAsked) {
+  return {{"non_finite", census.nonFinite},
+          {"beyond_half", census.beyondHalf},
+          {"exr", floatAsked || census.beyondHalf > 0 ? "float" : "half"}};
+}
+
 nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after) {
   nlohmann::json out = nlohmann::json::object();
   for (auto it = after.begin(); it != after.end(); ++it)
@@ -62,7 +68,8 @@ nlohmann::json toJson(const RunRecord& run) {
                        }()},
                       {"changed", f.changed},
                       {"sss", f.sss},
-                      {"rss_bytes", f.rssBytes}});
+                      {"rss_bytes", f.rssBytes},
+                      {"pixels", f.pixels}});
     if (!f.view.is_null()) frames.back()["view"] = f.view;
     if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
     wall.push_back(f.wallMs);

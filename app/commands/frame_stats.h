@@ -9,6 +9,7 @@
 
 #include "app/config/config.h"
 #include "gpu/gl_context.h"
+#include "gpu/image_io.h"
 #include "sss/renderer.h"
 
 namespace tallow::app {
@@ -29,10 +30,18 @@ struct FrameRecord {
   std::size_t rssBytes = 0;
   /// The view window's layout and state (app/view/view_layout.h); null for capture.
   nlohmann::json view;
+  /// What the image files cannot hold as it is (pixelsRecord; null when not counted).
+  nlohmann::json pixels;
 };
 
 /// The process's resident set now, in bytes (/proc/self/statm; 0 where it cannot be read).
 std::size_t residentBytes();
+
+
+/// stats.json's per-frame "pixels": {"non_finite": NaN or ±Inf pixels, "beyond_half": finite
+/// pixels beyond half-float's range, "exr": "half" or "float", the channels the EXR was written
+/// with: float when asked for, or when a pixel is beyond half's range (gpu::writeExr)}.
+nlohmann::json pixelsRecord(const gpu::PixelCensus& census, bool floatAsked);
 
 /// The radiosity maps' state after a frame, for FrameRecord::sss (null when the renderer has none).
 nlohmann::json mapsRecord(const sss::Renderer& renderer);

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "app/commands/field_command.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "geometry/cpu_mesher.h"
@@ -27,7 +28,7 @@ void appendWorld(geometry::TriangleMesh& out, const geometry::TriangleMesh& part
 }  // namespace
 
 geometry::TriangleMesh meshFields(const MeshOptions& options) {
-  if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
+  checkTime("--time", options.timeS);
   LoadedScene loaded = loadScene(options.scene);
   if (options.res != 0) {
     try {
@@ -72,8 +73,7 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
 int runMesh(const MeshOptions& options) {
   if (options.out.empty()) throw InputError("mesh: --out MESH.ply is required");
   const std::filesystem::path out(options.out);
-  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(folder)) throw InputError("--out: folder " + folder.string() + " does not exist");
+  checkOutputFile("--out", out);
   const geometry::TriangleMesh mesh = meshFields(options);
   geometry::writePly(out, mesh);
   std::printf("tallow: %zu triangle(s), %zu vertices (%s) -> %s\n", mesh.triangles.size(), mesh.positions.size(),

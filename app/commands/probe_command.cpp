@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "app/commands/bssrdf_csv.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/setup.h"
 #include "gpu/atomic_file.h"
@@ -26,7 +27,10 @@ int runProbeBssrdf(const ProbeBssrdfOptions& options) {
     throw InputError("--precision: expected float or double, got \"" + precision + "\"");
   if (options.gpu && precision == "double")
     throw InputError("--gpu evaluates in float (GLSL 4.5 has no double-precision exp or pow)");
-  const std::vector<sss::BssrdfConfig> configs = parseBssrdfConfigs(readInputFile(options.in), options.in);
+  checkOutputFile("--out", options.out);
+  const std::vector<sss::BssrdfConfig> configs = parseInputFile(
+      options.in, [&](const std::string& text) { return parseBssrdfConfigs(text, options.in); }, gpu::kMaxTableFileBytes,
+      "a CSV table");
 
   std::vector<sss::BssrdfValue> values;
   if (options.gpu) {

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "app/commands/capture_command.h"
 #include "app/commands/gnuplot.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/setup.h"
 #include "gpu/atomic_file.h"

@@ -10,6 +10,7 @@
 #include "app/commands/interrupt.h"
 #include "app/commands/progress.h"
 #include "app/commands/provenance.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "gpu/image_io.h"
 #include "sss/bssrdf/bssrdf.h"
@@ -27,7 +28,7 @@ sss::ReferenceSettings referenceSettings(const ReferenceOptions& options) {
   sss::ReferenceSettings s;
   s.timeS = options.timeS;
   s.maxPasses = options.spp > 0 ? options.spp : 0;
-  s.relError = std::isnan(options.relError) ? 0.0 : options.relError;
+  s.relError = options.relError.value_or(0.0);
   s.pointsPerPass = options.points;
   s.seed = options.seed;
   s.threads = options.threads;
@@ -81,14 +82,14 @@ bool ReferenceTracker::operator()(int passes, double relError) {
 void validateReferenceOptions(const ReferenceOptions& options) {
   if (options.out.empty()) throw InputError("reference: --out REF.exr is required");
   if (options.spp != kNotGiven && options.spp < 1) throw InputError("--spp: must be at least 1");
-  if (!std::isnan(options.relError) && !(std::isfinite(options.relError) && options.relError > 0.0))
+  if (options.relError && !(std::isfinite(*options.relError) && *options.relError > 0.0))
     throw InputError("--rel-error: must be a positive number");
-  if (options.spp == kNotGiven && std::isnan(options.relError))
+  if (options.spp == kNotGiven && !options.relError)
     throw InputError("reference: give --spp S (passes) or --rel-error E (relative standard error)");
   if (options.points < 0) throw InputError("--points: must be 0 (automatic) or more");
   if (options.threads < 0) throw InputError("--threads: must be at least 0");
   if (options.emergent < 0) throw InputError("--emergent: emitter points per object and pass must be at least 1");
-  if (!std::isfinite(options.timeS)) throw InputError("--time: must be a finite number of seconds");
+  checkTime("--time", options.timeS);
 }
 
 std::filesystem::path standardErrorPath(const std::filesystem::path& out) { return besideOutput(out, "_stderr"); }
@@ -115,8 +116,8 @@ sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss
 int runReference(const ReferenceOptions& options) {
   validateReferenceOptions(options);
   const std::filesystem::path out(options.out);
-  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(folder)) throw InputError("--out: folder " + folder.string() + " does not exist");
+  // Written as OpenEXR whatever the name says, so the name must say it (REF_stderr.exr beside it too).
+  checkOutputFile("--out", out, {".exr"});
   const LoadedScene loaded = loadScene(options.scene);
   sss::ReferenceResult r;
   // SIGINT/SIGTERM end the integration after the pass in hand; the passes done are written as a

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "app/commands/progress.h"
@@ -24,7 +25,7 @@ struct ReferenceOptions {
   SceneOptions scene;
   double timeS = 0.0;
   int spp = kNotGiven;  ///< passes (--spp)
-  double relError = std::numeric_limits<double>::quiet_NaN();  ///< --rel-error; NaN: not given
+  std::optional<double> relError;  ///< --rel-error; unset: not given (a NaN given is refused)
   int points = 0;           ///< --points: surface points per translucent object and pass; 0: automatic
   std::uint64_t seed = 1;   ///< --seed
   int threads = 0;          ///< --threads; 0: all cores
@@ -35,7 +36,8 @@ struct ReferenceOptions {
 };
 
 /// Checks the options that need no scene; throws InputError with one line (`--spp: must be at
-/// least 1`, `--rel-error: must be a positive number`, neither given, --points < 0, …).
+/// least 1`, `--rel-error: must be a positive number`, neither given, --points < 0, --time out of
+/// range, an --out that is not a writable .exr, …).
 void validateReferenceOptions(const ReferenceOptions& options);
 
 /// REF_stderr.exr beside REF.exr.

@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "gpu/file_bytes.h"
 
 namespace tallow::app {
 
@@ -21,17 +24,53 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The whole of a file the user named (a preset, a CSV); InputError naming it when it is a folder,
-/// cannot be opened or fails to read.
-inline std::string readInputFile(const std::filesystem::path& file) {
+[[noreturn]] inline void throwOutOfMemoryReading(const std::filesystem::path& file);
+
+/// The whole of a file the user named (a preset, a script, a CSV); InputError naming it when it is a
+/// folder or not a regular file (/dev/zero), larger than `maxBytes` (the limits of gpu/file_bytes.h,
+/// checked before reading), cannot be opened, fails to read or does not fit in memory.
+inline std::string readInputFile(const std::filesystem::path& file, std::uintmax_t maxBytes = gpu::kMaxTextFileBytes,
+                                 std::string_view what = "a text file") {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec)) throw InputError(file.string() + ": is a folder, not a file");
+  try {
+    gpu::checkInputFile(file, maxBytes, what);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(file.string() + ": read error");
-  return text.str();
+  try {
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(file.string() + ": read error");
+    return text.str();
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(file);
+  }
+}
+
+/// InputError `FILE: out of memory reading it (SIZE)`: a std::bad_alloc while reading or decoding
+/// a file the user named.
+[[noreturn]] inline void throwOutOfMemoryReading(const std::filesystem::path& file) {
+  try {
+    gpu::throwOutOfMemoryReading(file);
+  } catch (const std::runtime_error& e) {
+    throw InputError(e.what());
+  }
+}
+
+/// parse(readInputFile(file, …)): what the file's contents decode to, with a std::bad_alloc in the
+/// decoding (a table or document larger in memory than on disk) named as readInputFile names it.
+template <class Parse>
+auto parseInputFile(const std::filesystem::path& file, Parse&& parse, std::uintmax_t maxBytes = gpu::kMaxTextFileBytes,
+                    std::string_view what = "a text file") {
+  const std::string text = readInputFile(file, maxBytes, what);
+  try {
+    return parse(text);
+  } catch (const std::bad_alloc&) {
+    throwOutOfMemoryReading(file);
+  }
 }
 
 /// Optimal-string-alignment distance (Levenshtein plus adjacent transpositions, so "mpas" is one
@@ -92,15 +131,25 @@ inline std::string quote(std::string_view s) {
 inline std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates) {
   constexpr std::size_t kMinPrefix = 3;
   const std::size_t allowed = std::clamp<std::size_t>(word.size() / 3, 1, 3);
+  const auto abbreviates = [&](std::string_view c) {
+    return word.size() >= kMinPrefix && word.size() < c.size() &&
+           std::equal(word.begin(), word.end(), c.begin(), [](char a, char b) {
+             return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           });
+  };
   std::size_t best = std::numeric_limits<std::size_t>::max();
   std::string match;
   for (const std::string& c : candidates) {
     const std::size_t lengthGap = word.size() > c.size() ? word.size() - c.size() : c.size() - word.size();
-    if (lengthGap > allowed && word.size() > c.size()) continue;  // too far, and no abbreviation
-    std::size_t d = editDistance(word, c);
-    if (d > allowed && word.size() >= kMinPrefix && word.size() < c.size() &&
-        editDistance(word, std::string_view(c).substr(0, word.size())) == 0)
-      d = allowed;  // an abbreviation ranks after any typo within the allowance
+    std::size_t d = allowed;
+    if (lengthGap > allowed) {
+      // At least lengthGap edits apart, too many for a typo (and no need to count them, which
+      // for long input is the costly part): only an abbreviation can still match.
+      if (!abbreviates(c)) continue;
+    } else {
+      d = editDistance(word, c);
+      if (d > allowed && abbreviates(c)) d = allowed;  // an abbreviation ranks after any typo within the allowance
+    }
     if (d < best && d <= allowed && d < std::max(word.size(), c.size())) {
       best = d;
       match = c;

@@ -236,7 +236,7 @@ JsonDocument JsonDocument::parse(std::string_view text, std::string fileName) {
 }
 
 JsonDocument JsonDocument::load(const std::filesystem::path& file) {
-  return parse(readInputFile(file), file.string());
+  return parseInputFile(file, [&](const std::string& text) { return parse(text, file.string()); });
 }
 
 SourceLoc JsonDocument::locateOffset(std::size_t offset) const {

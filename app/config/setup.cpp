@@ -1,6 +1,5 @@
 #include "app/config/setup.h"
 
-#include <charconv>
 #include <cstdlib>
 
 #include "app/config/input_error.h"
@@ -21,21 +20,6 @@ std::filesystem::path fromEnvOr(const char* variable, const char* fallback) {
 
 std::filesystem::path dataDir() { return fromEnvOr("TALLOW_DATA_DIR", TALLOW_DEFAULT_DATA_DIR); }
 std::filesystem::path presetDir() { return fromEnvOr("TALLOW_PRESET_DIR", TALLOW_DEFAULT_PRESET_DIR); }
-
-std::pair<int, int> parseSize(const std::string& text) {
-  const auto x = text.find('x');
-  int w = 0, h = 0;
-  auto parse = [](std::string_view s, int& out) {
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-    return r.ec == std::errc() && r.ptr == s.data() + s.size();
-  };
-  if (x == std::string::npos || !parse(std::string_view(text).substr(0, x), w) ||
-      !parse(std::string_view(text).substr(x + 1), h))
-    throw InputError("--size: expected WIDTHxHEIGHT (e.g. 960x540), got \"" + text + "\"");
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw InputError("--size: " + text + " is out of range (1 to 16384 pixels per side)");
-  return {w, h};
-}
 
 LoadedScene loadScene(const SceneOptions& options) {
   const std::filesystem::path data = dataDir();

@@ -275,7 +275,7 @@ Script parseScript(std::string_view text, const std::string& fileName, const Reg
 }
 
 Script loadScript(const std::filesystem::path& file, const Registry& registry) {
-  return parseScript(readInputFile(file), file.string(), registry);
+  return parseInputFile(file, [&](const std::string& text) { return parseScript(text, file.string(), registry); });
 }
 
 }  // namespace tallow::app

@@ -12,6 +12,7 @@
 
 #include "app/commands/capture_command.h"
 #include "app/commands/frame_stats.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "app/playback/scene_controls.h"
@@ -63,15 +64,8 @@ std::pair<int, int> windowSizeFor(int width, int height, bool panel) {
   return {w, h};
 }
 
-std::filesystem::path folderOf(const std::string& file) {
-  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-  return parent.empty() ? std::filesystem::path(".") : parent;
-}
-
 void checkScreenshotName(const std::string& file, const std::string& option) {
-  const std::string ext = std::filesystem::path(file).extension().string();
-  if (ext != ".png" && ext != ".exr") throw InputError(option + ": expected a .png or .exr file, got \"" + file + "\"");
-  checkWritableFolder(folderOf(file));
+  checkOutputFile(option, file, {".png", ".exr"});
 }
 
 /// Everything the command line names, checked before a window opens: one line and no window.
@@ -85,14 +79,14 @@ struct CheckedInputs {
 CheckedInputs checkInputs(const ViewOptions& options) {
   if (options.frames < 0) throw InputError("--frames: must not be negative");
   if (!(options.fps >= 0.0) || !std::isfinite(options.fps)) throw InputError("--fps: must be a positive number");
-  if (options.timeS && !std::isfinite(*options.timeS)) throw InputError("--time: must be a finite number");
+  if (options.timeS) checkTime("--time", *options.timeS);
   CheckedInputs in;
   const LoadedScene loaded = loadScene(options.scene);  // the preset's and --set's errors, first
   in.width = loaded.config.render.width;
   in.height = loaded.config.render.height;
   for (const std::string& s : options.screenshots) checkScreenshotName(s, "--screenshot");
-  if (!options.savePreset.empty()) checkWritableFolder(folderOf(options.savePreset));
-  if (!options.stats.empty()) checkWritableFolder(folderOf(options.stats));
+  if (!options.savePreset.empty()) checkOutputFile("--save-preset", options.savePreset);
+  if (!options.stats.empty()) checkOutputFile("--stats", options.stats);
   if (!options.debugView.empty()) {
     try {
       in.debug = sss::parseDebugView(options.debugView);
@@ -107,7 +101,7 @@ CheckedInputs checkInputs(const ViewOptions& options) {
         throw InputError(c.where + ": frame " + std::to_string(c.frame) + " is beyond --frames " +
                          std::to_string(options.frames));
       if (c.action == ScriptAction::Screenshot) checkScreenshotName(c.path, c.where + ": screenshot");
-      if (c.action == ScriptAction::SavePreset) checkWritableFolder(folderOf(c.path));
+      if (c.action == ScriptAction::SavePreset) checkOutputFile(c.where + ": save-preset", c.path);
     }
   }
   if (!options.reference.empty()) {

@@ -4,10 +4,13 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <unordered_map>
+
+#include "gpu/file_bytes.h"
 
 namespace tallow::sss {
 
@@ -72,12 +75,17 @@ void validateMaterial(const Material& m) {
 }
 
 MaterialTable MaterialTable::load(const std::filesystem::path& csv) {
+  gpu::checkInputFile(csv, gpu::kMaxTextFileBytes, "a materials table");
   std::ifstream in(csv, std::ios::binary);
   if (!in) throw std::runtime_error(csv.string() + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(csv.string() + ": read error");
-  return parse(text.str(), csv.string());
+  try {
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw std::runtime_error(csv.string() + ": read error");
+    return parse(text.str(), csv.string());
+  } catch (const std::bad_alloc&) {
+    gpu::throwOutOfMemoryReading(csv);
+  }
 }
 
 MaterialTable MaterialTable::parse(std::string_view text, const std::string& name) {

@@ -10,24 +10,18 @@
 #include <stdexcept>
 
 #include "sss/maps/radiosity_estimator.h"
+#include "sss/memory_budget.h"
 #include "sss/view_setup.h"
 
 namespace tallow::sss {
 namespace {
 
 constexpr GLuint kLayerViewsBinding = 4;  // layered.geom
-/// Map memory allowed before the renderer refuses K × size² (colour with mipmaps + depth).
-constexpr std::size_t kMapMemoryBudget = std::size_t{4} << 30;
 
 const glm::mat4 kToTexture =
     glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
 
 int mipLevels(int size) { return static_cast<int>(std::floor(std::log2(static_cast<double>(size)))) + 1; }
-
-std::size_t mapBytes(int k, int size) {
-  const auto texels = static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * static_cast<std::size_t>(k);
-  return texels * 16 * 4 / 3 + texels * 4;  // RGBA32F with its mip chain (≤ 4/3), DEPTH32F
-}
 
 /// An orthonormal basis of the plane with normal `w`.
 void planeBasis(const glm::vec3& w, glm::vec3& t1, glm::vec3& t2) {
@@ -219,11 +213,7 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
   }
   if (6 * point > maxLayers)
     throw std::invalid_argument("too many point lights for this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
-  const std::size_t bytes = mapBytes(k, s.mapSize);
-  if (bytes > kMapMemoryBudget)
-    throw std::invalid_argument("sss.maps × sss.map_size²: " + std::to_string(k) + " maps of " +
-                                std::to_string(s.mapSize) + "² need " + std::to_string(bytes >> 20) +
-                                " MiB, over the " + std::to_string(kMapMemoryBudget >> 20) + " MiB map budget");
+  // Memory: sss::checkMemoryBudget counts the maps with everything else the frame allocates.
 }
 
 void RadiosityMaps::ensureLightTargets(int dirCount, int pointCount) {
@@ -263,6 +253,8 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
   lightMapSize_ = effectiveLightMapSize(scene, settings, sphere_.radius, std::min(maxTexture, maxCube));
+  // sss.light_map_auto sizes the G-buffers from the geometry, so only now can the budget count them.
+  if (lightMapSize_ != settings.sss.lightMapSize) checkMemoryBudget(scene, settings, lightMapSize_);
 
   std::vector<int> dirLights, pointLights;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)

@@ -88,8 +88,8 @@ class RadiosityMaps {
   static bool applies(const Scene& scene, const RenderSettings& settings);
   /// True when the frame needs the light G-buffers: radiosity maps or no-cache, with translucent objects.
   static bool needsLightGBuffers(const Scene& scene, const RenderSettings& settings);
-  /// Throws std::invalid_argument naming the limit when K, the map sizes or the memory exceed
-  /// what this GPU holds (GL_MAX_ARRAY_TEXTURE_LAYERS, GL_MAX_TEXTURE_SIZE, a memory budget), or
+  /// Throws std::invalid_argument naming the limit when K or the map sizes exceed what this GPU
+  /// holds (GL_MAX_ARRAY_TEXTURE_LAYERS, GL_MAX_TEXTURE_SIZE; memory: sss/memory_budget.h), or
   /// when the scene has more translucent objects or lights than the passes hold.
   static void checkLimits(const Scene& scene, const RenderSettings& settings);
 

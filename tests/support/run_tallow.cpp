@@ -41,7 +41,10 @@ CommandResult runTallow(const std::vector<std::string>& args, const std::vector<
     command += quote(w);
   };
   for (const auto& e : env) word(e);
-  word(TALLOW_TEST_BINARY);
+  // $TALLOW_TEST_TALLOW runs the tests against another build, e.g. an older one to show that a
+  // new test fails there.
+  const char* other = std::getenv("TALLOW_TEST_TALLOW");
+  word(other && *other ? other : TALLOW_TEST_BINARY);
   for (const auto& a : args) word(a);
   command += " >";
   command += quote((io.path() / "out").string());

@@ -18,7 +18,8 @@ struct CommandResult {
   std::string err;  ///< stderr
 };
 
-/// Runs TALLOW_TEST_BINARY with `args` (each shell-quoted), with `env` ("NAME=value") prepended.
+/// Runs TALLOW_TEST_BINARY (or $TALLOW_TEST_TALLOW when set) with `args` (each shell-quoted),
+/// with `env` ("NAME=value") prepended.
 CommandResult runTallow(const std::vector<std::string>& args, const std::vector<std::string>& env = {});
 
 /// Number of lines in `text` that are not empty.

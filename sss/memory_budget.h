@@ -1,0 +1,63 @@
+#pragma once
+// The GPU memory a frame allocates, as pure functions of the scene and the settings, checked
+// against what the GPU offers (gpu/gpu_memory.h) before anything is allocated. Each figure is the
+// bytes() of the objects it stands for once they exist (tests/memory_budget_gltest.cpp allocates
+// them and compares), so that the check counts what the renderer really takes: the radiosity maps
+// with their mip chain, depth and compute G-buffer, the light G-buffers, the VPLs with their
+// cluster shadow maps, the camera's render targets, the shadow maps, the dual-contouring buffers
+// and the peer methods' screen buffers and grids.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "sss/render_settings.h"
+#include "sss/scene.h"
+
+namespace tallow::sss {
+
+/// One thing a frame allocates.
+struct MemoryItem {
+  std::string name;      ///< e.g. "radiosity maps"
+  std::string sizedBy;   ///< the parameters that size it, with their values: "sss.maps=8 x sss.map_size=4096^2"
+  std::size_t bytes = 0;
+};
+
+struct FrameMemory {
+  std::vector<MemoryItem> items;  ///< in the order of the frame's passes; only what the frame needs
+  std::size_t total() const;
+};
+
+/// The camera pass's targets: radiance (RGBA32F), coverage (RGBA8) and depth (32F).
+std::size_t renderTargetBytes(int width, int height);
+/// The shadow maps of the lights that cast shadows (ShadowPass::bytes()): a render.shadow_map_size²
+/// layer per directional light, a cube of half that size per point light.
+std::size_t shadowMapBytes(const Scene& scene, const RenderSettings& settings);
+/// Light G-buffers (position, normal: RGBA32F; depth: 32F) of `directional` orthographic layers
+/// and `point` cubes, `size`² texels per layer or face.
+std::size_t lightGBufferBytes(int directional, int point, int size);
+/// K scattered radiosity maps of size²: RGBA32F with the full mip chain, depth, and with the
+/// compute gather (sss.gather) the maps' own G-buffer (position, normal).
+std::size_t radiosityMapBytes(int k, int size, bool computeGather);
+/// The virtual point lights without their shadow maps: the outermost-surface cube (position,
+/// normal, depth), the records, the directions and the cube's face views.
+std::size_t vplBytes(const VplSettings& vpl);
+/// The VPL clusters' cube shadow maps (vpl.shadows): one vpl.shadow_size² cube per cluster.
+std::size_t vplShadowBytes(const VplSettings& vpl);
+/// One field object's dual contouring at n³ samples (GpuDualContouring::bufferBytes()): the field
+/// and index textures, the vertex and mesh transform-feedback buffers at their capacities, the
+/// block list, counters and patch table.
+std::size_t dualContouringBytes(int samplesPerAxis);
+/// The image-space method's screen buffers and sample pattern (ImageSpaceSss::bytes()).
+std::size_t imageSpaceBytes(int width, int height, int translucentObjects, const ImageSpaceSettings& settings);
+
+/// Everything the frame of `scene` with `settings` allocates on the GPU. `lightMapSize` > 0
+/// stands for the light G-buffers' size when sss.light_map_auto has raised it above
+/// sss.light_map_size (it depends on the geometry, known only once the frame has begun).
+FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize = 0);
+
+/// Throws std::invalid_argument with one line when frameMemory() exceeds the memory the current
+/// GL context's GPU offers (gpu::gpuMemory()), naming the total, the GPU's figure and where it
+/// comes from, and the largest items with the parameters that size them.
+void checkMemoryBudget(const Scene& scene, const RenderSettings& settings, int lightMapSize = 0);
+
+}  // namespace tallow::sss
