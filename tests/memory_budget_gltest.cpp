@@ -11,7 +11,10 @@
 #include "gpu/gl_context.h"
 #include "gpu/gl_objects.h"
 #include "gpu/gpu_memory.h"
+#include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
 #include "sss/memory_budget.h"
+#include "sss/peers/image_space.h"
 #include "support/error_of.h"
 #include "support/render_support.h"
 

@@ -8,6 +8,7 @@
 #include "app/commands/capture_command.h"
 #include "app/commands/comparison_figure.h"
 #include "app/commands/gnuplot.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "gpu/image_io.h"
 
@@ -43,7 +44,7 @@ int runCompare(const CompareOptions& o) {
       throw InputError("--mask: " + o.mask + " is " + sizeText(*mask) + ", the images " + sizeText(a));
   }
   const std::filesystem::path out(o.out);
-  checkWritableFolder(out.has_parent_path() ? out.parent_path() : std::filesystem::path("."));
+  checkOutputFile("--out", out, {".png"});
   if (!gnuplotAvailable()) throw InputError("compare: gnuplot is not installed (apt-get install gnuplot-nox)");
 
   FigureSpec spec;

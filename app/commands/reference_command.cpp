@@ -58,7 +58,7 @@ std::string errorText(double relError) {
 }  // namespace
 
 ReferenceTracker::ReferenceTracker(const ReferenceOptions& options, Progress& progress)
-    : spp_(options.spp > 0 ? options.spp : 0), target_(std::isnan(options.relError) ? 0.0 : options.relError),
+    : spp_(options.spp > 0 ? options.spp : 0), target_(options.relError.value_or(0.0)),
       progress_(progress) {
   progress_.setTotal(spp_);
 }
