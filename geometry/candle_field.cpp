@@ -83,7 +83,7 @@ std::shared_ptr<detail::CandleGrid> build(double s, const CandleParams& p) {
   auto wick = cylinderLevelSet(p.wickRadius, cupBottom - 0.004, cupBottom + p.wickLength, *xform);
   openvdb::tools::csgUnion(*wax, *wick);
 
-  out->flame = glm::dvec3(0.0, cupBottom + p.wickLength + 0.004, 0.0);
+  out->flame = glm::dvec3(0.0, cupBottom + p.wickLength + p.flameLift, 0.0);
   out->grid = wax;
   return out;
 }

@@ -21,9 +21,12 @@ struct CandleParams {
   double durationS = 20.0;       ///< seconds from lighting to the end of the animation
   double burnFraction = 0.5;     ///< fraction of the height burnt away at t = durationS
   double rimWidth = 0.003;       ///< wall left between the cup and the outside, metres
-  double cupDepth = 0.008;       ///< depth of the melted cup once fully formed, metres
+  double cupDepth = 0.010;       ///< depth of the melted cup once fully formed, metres
   double wickRadius = 0.001;     ///< metres
-  double wickLength = 0.006;     ///< how far the wick stands above the bottom of the cup, metres
+  double wickLength = 0.004;     ///< how far the wick stands above the bottom of the cup, metres
+  /// The flame's centre (the point light) above the wick's tip, metres. With the cup formed the
+  /// flame is wickLength + flameLift above its bottom: 3 mm below the rim, surrounded by wax.
+  double flameLift = 0.003;
   int dripCount = 3;             ///< drips that start one after the other and run down the side
   double dripRadius = 0.0015;    ///< metres
   double voxelSize = 0.0005;     ///< level-set voxel, metres
@@ -41,8 +44,11 @@ class CandleField final : public LevelSetField {
   CandleField(const CandleField&);
   CandleField& operator=(const CandleField&);
 
-  /// Point in the cup a few millimetres above the wick's tip: where the flame (a light) sits.
+  /// Point in the cup flameLift above the wick's tip: where the flame (a light) sits. Below the
+  /// rim and inside the cup from cupFormedS(params) on.
   glm::dvec3 flamePosition() const;
+  /// Seconds after which the cup has its full depth (it deepens from 35% over the first quarter).
+  static double cupFormedS(const CandleParams& params) { return 0.25 * params.durationS; }
   double rimHeight() const;       ///< y of the top of the rim at this t, metres
   double cupRadius() const;       ///< radius of the cup where it meets the rim, metres
   double currentCupDepth() const;  ///< depth of the cup below the rim on the axis, metres

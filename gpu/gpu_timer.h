@@ -1,6 +1,13 @@
 #pragma once
 // GPU time per named pass, from GL_TIMESTAMP query pairs (pairs, not GL_TIME_ELAPSED, so that
-// passes may nest). A frame's timings are read after it is submitted; reading waits for the GPU.
+// passes may nest), kept in a ring of frames so that a frame never waits for its own queries: the
+// times of frame n are read once the GPU has them, typically a frame or two later, or right away
+// after a glFinish (capture, bench). A frame whose times are never read is dropped when the ring
+// comes round to its slot again.
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,15 +17,24 @@ namespace tallow::gpu {
 
 struct PassTiming {
   std::string name;
-  double gpuMs = 0.0;
+  double gpuMs = std::numeric_limits<double>::quiet_NaN();  ///< NaN until the GPU's times are read
+  double cpuMs = 0.0;  ///< the CPU clock's time in the pass (its own work and the commands it issued)
 };
 
 class GpuTimer {
  public:
-  void beginFrame();
+  /// Frames whose times can still be read; a GPU is rarely more than two or three frames behind.
+  static constexpr std::size_t kRing = 4;
+
+  /// Starts the next frame (numbered 1, 2, …) and returns its number.
+  std::uint64_t beginFrame();
   void begin(const std::string& pass);
   void end();
-  /// Waits for this frame's queries; passes in the order they began.
+  /// The GPU milliseconds of `frame`'s passes, in the order they began. With wait = false only when
+  /// the GPU has finished all of them (never stalls); with wait = true it waits for them. nullopt
+  /// when not available yet (wait = false) or no longer kept (the ring reused the frame's slot).
+  std::optional<std::vector<double>> times(std::uint64_t frame, bool wait) const;
+  /// Compatibility for a single frame: beginFrame … collect() waits for this frame's times.
   std::vector<PassTiming> collect();
 
  private:
@@ -26,9 +42,17 @@ class GpuTimer {
     std::string name;
     Query start{GL_TIMESTAMP}, stop{GL_TIMESTAMP};
   };
-  std::vector<Pair> pairs_;  ///< a pool; the first `used_` belong to the current frame
+  struct Slot {
+    std::uint64_t frame = 0;  ///< 0: empty
+    std::vector<Pair> pairs;  ///< a pool; the first `used` belong to `frame`
+    std::size_t used = 0;
+  };
+  Slot& slot(std::uint64_t frame) { return slots_[frame % kRing]; }
+  const Slot& slot(std::uint64_t frame) const { return slots_[frame % kRing]; }
+
+  std::array<Slot, kRing> slots_;
+  std::uint64_t frame_ = 0;
   std::vector<std::size_t> open_;
-  std::size_t used_ = 0;
 };
 
 /// Times a scope: `GpuScope s(timer, "shadow");`.

@@ -15,6 +15,10 @@ else
   extra=()
 fi
 jobs="$(nproc 2>/dev/null || echo 2)"
+# ccache, where installed, keeps rebuilds of other checkouts of the same sources short.
+if command -v ccache >/dev/null 2>&1; then
+  extra+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE="${TALLOW_BUILD_TYPE:-Release}" "${extra[@]}" >/dev/null
 targets=()
 for t in ${TALLOW_BUILD_TARGETS:-}; do targets+=(--target "$t"); done

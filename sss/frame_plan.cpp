@@ -39,6 +39,7 @@ std::vector<Pass*> FramePlan::passes(const FrameState& state) {
   for (Pass* p : m.passes(state)) out.push_back(p);
   camera_.setMethod(m);
   out.push_back(&camera_);
+  if (flame_.needed(state)) out.push_back(&flame_);
   return out;
 }
 

@@ -1,11 +1,12 @@
 #pragma once
 // The frame plan: the passes a frame runs, in order — the field objects' isosurfaces, the shadow
-// maps, the frame's translucency method's passes, the camera pass — each with why this scene needs
-// it. The objects live as long as the plan and keep what they track between frames.
+// maps, the frame's translucency method's passes, the camera pass, a candle's flame over it — each
+// with why this scene needs it. The objects live as long as the plan and keep what they track between frames.
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "sss/flame_pass.h"
 #include "sss/frame_passes.h"
 #include "sss/translucency_method.h"
 
@@ -47,6 +48,7 @@ class FramePlan {
   std::vector<std::unique_ptr<TranslucencyMethod>> methods_;
   std::vector<const TranslucencyMethod*> methodViews_;
   CameraPass camera_;
+  FlamePass flame_;
 };
 
 }  // namespace tallow::sss

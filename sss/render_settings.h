@@ -107,6 +107,7 @@ struct RenderSettings {
   int fieldRes = 0;           ///< field.res [lattice samples per axis]
   geometry::VertexPlacement fieldPlacement = geometry::kDefaultPlacement;  ///< field.placement
   bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
+  bool flame = true;          ///< render.flame: the visible flame of a burning candle (sss/flame_pass.h)
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;
   VplSettings vpl;

@@ -1,6 +1,7 @@
 #include "sss/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "gpu/readback.h"
@@ -118,14 +119,21 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   checkLimits(scene, settings);
   target_.ensure(settings.width, settings.height);
   geometry_.update(scene);
-  timer_.beginFrame();
+  FrameTimings t;
+  t.frame = timer_.beginFrame();
   const FrameState state{scene, settings, timeS, accumulation_};
   FrameContext context{state, shaders_, geometry_, modules_, target_, plan_.method(state), plan_.methods()};
   std::map<std::string, Stamp> before = resources_;
   for (const auto& [pass, d] : schedule(state, resources_)) {
     {
+      const auto start = std::chrono::steady_clock::now();
       gpu::GpuScope scope(timer_, pass->name());
       pass->run(context, d == Due::Changed);
+      gpu::PassTiming timing;
+      timing.name = pass->name();
+      timing.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      t.cpuTotalMs += timing.cpuMs;
+      t.passes.push_back(std::move(timing));
     }
     // What it read, as it was when it ran: the stamps of this frame's writers before it (the
     // schedule already counted this frame's writes; a pass reads only what runs before it).
@@ -141,10 +149,33 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
     for (const std::string& w : io.writes) before[w] = resources_[w];
   }
   forget_ = false;
-  FrameTimings t;
-  t.passes = timer_.collect();
-  for (const auto& p : t.passes) t.gpuTotalMs += p.gpuMs;
+  // No wait here: this frame's GPU times are read later (resolveTimings, latestTimings).
+  pending_.push_back(t);
+  if (pending_.size() > gpu::GpuTimer::kRing) pending_.erase(pending_.begin());
   return t;
+}
+
+bool Renderer::resolveTimings(FrameTimings& t, bool wait) const {
+  if (t.gpuKnown()) return true;
+  const auto ms = timer_.times(t.frame, wait);
+  if (!ms || ms->size() != t.passes.size()) return false;
+  t.gpuTotalMs = 0.0;
+  for (std::size_t i = 0; i < ms->size(); ++i) {
+    t.passes[i].gpuMs = (*ms)[i];
+    t.gpuTotalMs += (*ms)[i];
+  }
+  return true;
+}
+
+const FrameTimings& Renderer::latestTimings() {
+  // Newest first: the first frame the GPU has finished is the one to show; older ones go.
+  for (auto it = pending_.rbegin(); it != pending_.rend(); ++it)
+    if (resolveTimings(*it, false)) {
+      latest_ = *it;
+      pending_.erase(pending_.begin(), it.base());
+      break;
+    }
+  return latest_;
 }
 
 void Renderer::restartAccumulation() { ++accumulation_; }
@@ -170,12 +201,16 @@ MapCoverage Renderer::mapCoverage() const {
   return m;
 }
 
-std::vector<std::uint8_t> Renderer::receiverMask() const {
+std::vector<std::uint8_t> Renderer::coverageMask(int channel) const {
   const gpu::Image c = gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
   std::vector<std::uint8_t> mask(c.pixels.size());
-  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].b > 0.5f ? 1 : 0;
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i][channel] > 0.5f ? 1 : 0;
   return mask;
 }
+
+std::vector<std::uint8_t> Renderer::receiverMask() const { return coverageMask(2); }
+
+std::vector<std::uint8_t> Renderer::translucentMask() const { return coverageMask(0); }
 
 std::size_t Renderer::triangleCount() const {
   return geometry_.triangleCount() + modules_.find<FieldObjects>()->triangleCount();

@@ -3,7 +3,9 @@
 // maps, the translucency method's passes and the camera pass. render() runs those whose declared
 // inputs changed (sss/pass.h says when a pass reruns), times each on the GPU, and keeps what they
 // made for the next frame; plan() and planFrame() say which passes and why (`--explain`).
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -35,9 +37,14 @@ struct MapCoverage {
   double unseenShare() const { return translucentPixels ? double(unseenPixels) / double(translucentPixels) : 0.0; }
 };
 
+/// One frame's time per pass: the CPU clock's when render() returns, the GPU's once the timer
+/// queries are read (Renderer::resolveTimings, or Renderer::latestTimings for an earlier frame).
 struct FrameTimings {
-  std::vector<gpu::PassTiming> passes;  ///< GPU ms per pass that ran
-  double gpuTotalMs = 0.0;
+  std::uint64_t frame = 0;              ///< the renderer's frame number (gpu::GpuTimer)
+  std::vector<gpu::PassTiming> passes;  ///< per pass that ran, in order
+  double cpuTotalMs = 0.0;
+  double gpuTotalMs = std::numeric_limits<double>::quiet_NaN();  ///< NaN until resolved
+  bool gpuKnown() const { return !std::isnan(gpuTotalMs); }
 };
 
 /// Checks settings and scene against the limits of the renderer and of the current GL context;
@@ -58,7 +65,14 @@ class Renderer {
 
   /// Renders the frame at time `timeS` into the HDR target (settings.width × settings.height).
   /// `scene` must have the same objects as at construction; transforms and parameters may change.
+  /// Never waits for the GPU: the timings returned hold each pass's CPU time; their GPU times come
+  /// from resolveTimings (after a glFinish, at no wait) or, frames later, from latestTimings.
   FrameTimings render(const Scene& scene, const RenderSettings& settings, double timeS);
+  /// Fills t's GPU times from the timer ring, waiting for them when `wait`; false when they are not
+  /// available (wait = false) or no longer kept (more than gpu::GpuTimer::kRing frames ago).
+  bool resolveTimings(FrameTimings& t, bool wait = true) const;
+  /// The newest frame whose GPU times are known, looked up without waiting (frame 0: none yet).
+  const FrameTimings& latestTimings();
   /// Tone maps the last frame into framebuffer `target` (0 = window) of the given size.
   void display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap);
 
@@ -68,6 +82,8 @@ class Renderer {
   /// Per pixel of the last frame (top row first): 1 where the camera sees an opaque surface (a
   /// receiver of the VPLs' light), 0 elsewhere. Reads the frame back.
   std::vector<std::uint8_t> receiverMask() const;
+  /// Per pixel of the last frame: 1 where the camera sees a translucent object. Reads the frame back.
+  std::vector<std::uint8_t> translucentMask() const;
   const gpu::Texture& radiance() const { return target_.radiance; }
   /// The camera target's coverage (Algorithm 1: r translucent, g seen by a map, b opaque) and depth
   /// attachments of the last frame, for the view window's debug views.
@@ -122,7 +138,11 @@ class Renderer {
   int accumulation_ = 0;  ///< restartAccumulation() calls: the input "accumulation"
   bool forget_ = false;   ///< invalidate(): every pass of the next frame runs as changed
   DisplayPass display_;
+  /// 1 where the coverage target's channel (r translucent, g seen by a map, b opaque) is set.
+  std::vector<std::uint8_t> coverageMask(int channel) const;
   gpu::GpuTimer timer_;
+  std::vector<FrameTimings> pending_;  ///< rendered frames whose GPU times are not read yet (≤ kRing)
+  FrameTimings latest_;                ///< the newest with GPU times
   CameraTarget target_;
 };
 

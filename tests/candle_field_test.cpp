@@ -16,6 +16,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -118,6 +119,42 @@ TEST(CandleField, TopMeltsIntoACupWithARim) {
                     static_cast<float>(field.bandWidth()));
     EXPECT_FLOAT_EQ(static_cast<float>(field.value(glm::dvec3(0.0, 0.01, 0.0))),
                     static_cast<float>(-field.bandWidth()));
+  }
+}
+
+TEST(CandleField, TheFlameBurnsBelowTheRimInsideTheCupOnceItHasFormed) {
+  // Issue 16, point 5, from the mesh the renderer would draw: at times drawn at random over the
+  // burn after the cup has formed (the candle preset starts at 12 s, after cupFormedS = 5 s), the
+  // flame is below the top of the rim and wax surrounds it all the way round at its height.
+  const CandleParams params;
+  std::mt19937 random(16);
+  std::uniform_real_distribution<double> burn(CandleField::cupFormedS(params), params.durationS);
+  for (int k = 0; k < 3; ++k) {
+    const double t = burn(random);
+    const CandleField field(t);
+    const SampledLattice lattice = sampleField(field, kResolution);
+    const TriangleMesh mesh = meshOnCpu(lattice, field);
+    ASSERT_FALSE(mesh.triangles.empty()) << "t=" << t;
+    const glm::dvec3 flame = field.flamePosition();
+    double top = -std::numeric_limits<double>::infinity();
+    for (const glm::vec3& v : mesh.positions) top = std::max(top, double(v.y));
+    EXPECT_LT(flame.y, top - 0.002) << "t=" << t << ": the flame is not 2 mm below the rim's top";
+    EXPECT_GT(field.value(flame), 0.0) << "t=" << t << ": the flame is inside the wax";
+    // The wall at the flame's height: in each of 16 sectors a vertex of the mesh within a cell of
+    // that height, farther from the axis than the flame and no farther than the candle's side.
+    constexpr int kSectors = 16;
+    std::vector<int> wall(kSectors, 0);
+    const double flameR = std::hypot(flame.x, flame.z);
+    for (const glm::vec3& v : mesh.positions) {
+      const double r = std::hypot(double(v.x), double(v.z));
+      if (std::abs(double(v.y) - flame.y) > lattice.cellSize || r <= flameR + params.wickRadius + lattice.cellSize ||
+          r > params.radius + lattice.cellSize)
+        continue;
+      const double angle = std::atan2(double(v.z), double(v.x)) + std::numbers::pi;  // [0, 2π]
+      ++wall[std::min(kSectors - 1, static_cast<int>(angle / (2.0 * std::numbers::pi) * kSectors))];
+    }
+    for (int sector = 0; sector < kSectors; ++sector)
+      EXPECT_GT(wall[sector], 0) << "t=" << t << ": no wax around the flame in sector " << sector;
   }
 }
 

@@ -281,6 +281,16 @@ TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
   EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("vpl")) << "the default preset lights the table with VPLs";
   EXPECT_EQ(stats["frames"][0]["time_s"], 12.0) << "the candle's start_s";
   EXPECT_EQ(stats["accumulate"], 16) << "a still frame: the maps accumulate as in a paused window";
+  // The flame is drawn (issue 16, point 5), and each pass has its CPU time beside its GPU time.
+  const auto& frame = stats["frames"][0];
+  EXPECT_TRUE(frame["gpu_ms"].contains("flame")) << frame["gpu_ms"].dump();
+  EXPECT_TRUE(frame["cpu_ms"].contains("field.sample")) << frame.dump();
+  EXPECT_GT(frame["cpu_ms"]["field.sample"].get<double>(), 0.0) << "sampling the field is CPU work";
+  // The lit wax reads warm, not clipped white: under 2% of the candle's pixels have all three
+  // channels >= 0.98 after the tone map (issue 16's acceptance figure).
+  const double translucent = frame["pixels"]["translucent"].get<double>();
+  ASSERT_GT(translucent, 50.0) << "the candle is in the picture";
+  EXPECT_LT(frame["pixels"]["translucent_clipped"].get<double>() / translucent, 0.02) << frame["pixels"].dump();
 }
 
 }  // namespace

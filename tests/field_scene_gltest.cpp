@@ -118,7 +118,7 @@ TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
   const double drop = params.burnFraction * params.height + 0.65 * params.cupDepth;
   constexpr double kFloat = 1e-6;  // light positions are floats (an ulp at 0.1 m is 7e-9)
   EXPECT_NEAR(start.y - burnt.y, drop, kFloat);
-  const double flameY0 = params.height - 0.35 * params.cupDepth + params.wickLength + 0.004;  // see candle_field.cpp
+  const double flameY0 = params.height - 0.35 * params.cupDepth + params.wickLength + params.flameLift;  // see candle_field.cpp
   EXPECT_NEAR(start.y - position.y, flameY0, kFloat);
   EXPECT_NEAR(start.x, position.x, kFloat);
   EXPECT_NEAR(burnt.z, position.z, kFloat);

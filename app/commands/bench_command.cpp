@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <thread>
 
 #include "app/commands/bench_plot.h"
@@ -101,6 +102,7 @@ struct RowResult {
   gpu::ImageError firstError, lastError;
   std::vector<double> wallMs, accumulatingMs, convergedMs;
   std::map<std::string, std::vector<double>> passMs;
+  std::map<std::string, std::vector<double>> passCpuMs;  ///< the CPU clock's time in each pass
   std::vector<FramePoint> convergence;
   std::size_t gpuBytes = 0, triangles = 0;
   std::optional<std::size_t> mapsBytes;
@@ -235,13 +237,17 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
       return p.name == "sss.maps" || p.name == "image_space.scatter";
     });
     const auto start = Clock::now();
-    const sss::FrameTimings timings = renderer.render(scene, settings, timeS);
+    sss::FrameTimings timings = renderer.render(scene, settings, timeS);
     glFinish();
     const double ms = msSince(start);
+    renderer.resolveTimings(timings);  // after glFinish: no wait
     cumulative += ms;
     row.wallMs.push_back(ms);
     (accumulating ? row.accumulatingMs : row.convergedMs).push_back(ms);
-    for (const auto& p : timings.passes) row.passMs[p.name].push_back(p.gpuMs);
+    for (const auto& p : timings.passes) {
+      row.passMs[p.name].push_back(p.gpuMs);
+      row.passCpuMs[p.name].push_back(p.cpuMs);
+    }
     gpu::Image image = renderer.readRadiance();
     const gpu::ImageError e = gpu::imageError(image, ref.radiance, ref.standardError);
     row.convergence.push_back({i, cumulative, e});
@@ -378,7 +384,7 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
     const Case& c = (*b.cases)[index];
     const ReferenceGroup& ref = (*b.groups)[static_cast<std::size_t>(c.group)];
     json settings = json::object();
-    for (std::size_t i = 0; i < b.sweeps.size(); ++i) settings[b.sweeps[i].key] = c.values[i];
+    for (std::size_t i = 0; i < b.sweeps.size(); ++i) settings[b.sweeps[i].key] = c.values[i].empty() ? json(nullptr) : json(c.values[i]);  // null: not read
     json passMedians = json::object();
     for (const std::string& p : b.passNames) {
       const auto it = row.passMs.find(p);
@@ -434,6 +440,9 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
     }
     values["settings"] = settings;
     values["gpu_ms_median"] = passMedians;
+    json cpuMedians = json::object();
+    for (const auto& [name, ms] : row.passCpuMs) cpuMedians[name] = median(ms);
+    values["cpu_ms_median"] = cpuMedians;
     values["wall_ms"] = row.wallMs;
     values["first_error"] = errorJson(row.firstError);
     values["last_error"] = errorJson(row.lastError);
@@ -516,6 +525,40 @@ void writeRowPictures(const std::filesystem::path& folder, const Case& c, const 
   writeComparisonFigure(folder / "comparison.png", spec);
 }
 
+/// The registry keys the passes planned for `config` read or are paced by (sss/pass.h), the
+/// surface pass's share for the selected method included.
+std::set<std::string> keysRead(const Config& config) {
+  std::set<std::string> keys;
+  for (const sss::PlannedPass& p : sss::Renderer::plan(config.scene, config.render)) {
+    keys.insert(p.io.reads.begin(), p.io.reads.end());
+    keys.insert(p.io.paces.begin(), p.io.paces.end());
+  }
+  return keys;
+}
+
+/// A sweep of a method's knob applies only to the methods that read its key (issue 19): for the
+/// others its values would render identical rows, so they get one row, the key not applicable
+/// (an empty value: no part in the row's name, null in bench.json). Keys that change the ground
+/// truth are left to every method: each value is compared against its own reference.
+std::vector<Case> onlyWhereRead(std::vector<Case> cases, const std::vector<Sweep>& sweeps) {
+  // A method reads a key when a pass of any of its rows does: the plan itself may depend on the
+  // swept value (vpl.count=0 plans no VPL pass), so every value is asked.
+  std::map<std::string, std::set<std::string>> readBy;
+  for (const Case& c : cases) readBy[c.method].merge(keysRead(c.loaded.config));
+  std::vector<Case> kept;
+  std::set<std::pair<std::string, std::vector<std::string>>> seen;
+  for (Case& c : cases) {
+    for (std::size_t i = 0; i < sweeps.size(); ++i)
+      if (sweeps[i].knob && readBy[c.method].count(sweeps[i].key) == 0) c.values[i].clear();  // not applicable
+    if (!seen.emplace(c.method, c.values).second) continue;  // the same row as one already kept
+    c.name = fileStem(c.method);
+    for (std::size_t i = 0; i < sweeps.size(); ++i)
+      if (!c.values[i].empty()) c.name += '_' + fileStem(sweeps[i].key) + '-' + fileStem(c.values[i]);
+    kept.push_back(std::move(c));
+  }
+  return kept;
+}
+
 }  // namespace
 
 int runBench(const BenchOptions& o) {
@@ -551,16 +594,14 @@ int runBench(const BenchOptions& o) {
       c.method = method;
       c.values = values;
       c.scene = o.scene;
+      // The CPU reference has no visible flame: the rows are rendered without it (first, so that a
+      // --set render.flame=true given on purpose still wins).
+      c.scene.sets.insert(c.scene.sets.begin(), "render.flame=false");
       c.scene.sets.push_back("method=" + method);
-      c.name = fileStem(method);
       std::vector<std::string> truthKey;
       std::vector<std::pair<std::string, std::string>> truthSettings;
       for (std::size_t i = 0; i < sweeps.size(); ++i) {
         c.scene.sets.push_back(sweeps[i].key + "=" + values[i]);
-        c.name += '_';
-        c.name += fileStem(sweeps[i].key);
-        c.name += '-';
-        c.name += fileStem(values[i]);
         if (!sweeps[i].knob) {
           truthKey.push_back(values[i]);
           truthSettings.emplace_back(sweeps[i].key, values[i]);
@@ -579,6 +620,7 @@ int runBench(const BenchOptions& o) {
       c.group = it->second;
       cases.push_back(std::move(c));
     }
+  cases = onlyWhereRead(std::move(cases), sweeps);
   const int width = base.config.render.width, height = base.config.render.height;
   for (const Case& c : cases)
     if (c.loaded.config.render.width != width || c.loaded.config.render.height != height)
@@ -709,7 +751,8 @@ int runBench(const BenchOptions& o) {
       SpeedErrorPoint p;
       p.method = c.method;
       p.style = static_cast<int>(std::find(allMethods.begin(), allMethods.end(), c.method) - allMethods.begin());
-      for (std::size_t i = 0; i < sweeps.size(); ++i) p.label += (i ? ", " : "") + c.values[i];
+      for (std::size_t i = 0; i < sweeps.size(); ++i)
+        if (!c.values[i].empty()) p.label += (p.label.empty() ? "" : ", ") + c.values[i];
       p.ms = median(row.wallMs);
       p.error = row.lastError.relRmse;
       points.push_back(p);

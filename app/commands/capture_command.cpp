@@ -32,10 +32,15 @@ void addTimings(sss::FrameTimings& total, const sss::FrameTimings& more) {
   for (const gpu::PassTiming& p : more.passes) {
     auto it = std::find_if(total.passes.begin(), total.passes.end(),
                            [&](const gpu::PassTiming& q) { return q.name == p.name; });
-    if (it == total.passes.end()) total.passes.push_back(p);
-    else it->gpuMs += p.gpuMs;
+    if (it == total.passes.end()) {
+      total.passes.push_back(p);
+    } else {
+      it->gpuMs += p.gpuMs;
+      it->cpuMs += p.cpuMs;
+    }
   }
   total.gpuTotalMs += more.gpuTotalMs;
+  total.cpuTotalMs += more.cpuTotalMs;
 }
 
 std::string frameName(int index, const char* extension) {
@@ -184,8 +189,14 @@ int runCapture(const CaptureOptions& options) {
         // With --accumulate N the frame's time is rendered N times (a paused window's progressive
         // accumulation); its GPU timings are the sums over those renders, like its wall time.
         frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
-        for (int a = 1; a < options.accumulate; ++a)
-          addTimings(frame.gpu, renderer.render(config.scene, config.render, frame.timeS));
+        for (int a = 1; a < options.accumulate; ++a) {
+          // The GPU times of the renders so far are read before the sum is taken (a wait, as the
+          // accumulated frame is timed whole).
+          renderer.resolveTimings(frame.gpu);
+          sss::FrameTimings more = renderer.render(config.scene, config.render, frame.timeS);
+          renderer.resolveTimings(more);
+          addTimings(frame.gpu, more);
+        }
       } catch (const std::invalid_argument& e) {
         if (where.empty()) throw;
         throw InputError(where + ": " + e.what());
@@ -194,10 +205,12 @@ int runCapture(const CaptureOptions& options) {
       for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
         if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
       glFinish();
+      renderer.resolveTimings(frame.gpu);  // the GPU is done: no wait
       frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       gpu::Image image = renderer.readRadiance();
       const gpu::PixelCensus census = gpu::censusPixels(image);
       frame.pixels = pixelsRecord(census, options.exrFloat);
+      frame.pixels.update(clippedRecord(image, renderer.translucentMask(), config.render.toneMap));
       if (census.nonFinite > 0)
         std::fprintf(stderr,
                      "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",

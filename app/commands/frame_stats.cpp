@@ -1,4 +1,5 @@
 #include "app/commands/frame_stats.h"
+#include "gpu/image_io.h"
 #include "sss/maps/radiosity_maps.h"
 
 #include <unistd.h>
@@ -39,6 +40,19 @@ nlohmann::json pixelsRecord(const gpu::PixelCensus& census, bool floatAsked) {
           {"exr", floatAsked || census.beyondHalf > 0 ? "float" : "half"}};
 }
 
+nlohmann::json clippedRecord(const gpu::Image& image, const std::vector<std::uint8_t>& translucent,
+                             const gpu::ToneMapSettings& toneMap) {
+  const std::vector<std::uint8_t> rgb = gpu::toneMappedRgb8(image, toneMap);
+  std::size_t pixels = 0, clipped = 0;
+  constexpr std::uint8_t kNearWhite = 250;  // 0.98 of 255, rounded up
+  for (std::size_t i = 0; i < translucent.size() && 3 * i + 2 < rgb.size(); ++i) {
+    if (!translucent[i]) continue;
+    ++pixels;
+    if (rgb[3 * i] >= kNearWhite && rgb[3 * i + 1] >= kNearWhite && rgb[3 * i + 2] >= kNearWhite) ++clipped;
+  }
+  return {{"translucent", pixels}, {"translucent_clipped", clipped}};
+}
+
 nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::json& after) {
   nlohmann::json out = nlohmann::json::object();
   for (auto it = after.begin(); it != after.end(); ++it)
@@ -50,16 +64,21 @@ nlohmann::json toJson(const RunRecord& run) {
   using nlohmann::json;
   json frames = json::array();
   std::vector<double> wall;
-  std::map<std::string, std::vector<double>> perPass;
-  std::vector<double> gpuTotal, changes;
+  std::map<std::string, std::vector<double>> perPass, perPassCpu;
+  std::vector<double> gpuTotal, cpuTotal, changes;
+  // A GPU time not read (NaN) is null, and left out of the medians.
+  const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   for (const FrameRecord& f : run.frames) {
-    json passes = json::object();
+    json passes = json::object(), cpu = json::object();
     for (const auto& p : f.gpu.passes) {
-      passes[p.name] = p.gpuMs;
-      perPass[p.name].push_back(p.gpuMs);
+      passes[p.name] = number(p.gpuMs);
+      cpu[p.name] = p.cpuMs;
+      if (std::isfinite(p.gpuMs)) perPass[p.name].push_back(p.gpuMs);
+      perPassCpu[p.name].push_back(p.cpuMs);
     }
     frames.push_back({{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
-                      {"gpu_ms", passes}, {"gpu_total_ms", f.gpu.gpuTotalMs},
+                      {"gpu_ms", passes}, {"gpu_total_ms", number(f.gpu.gpuTotalMs)},
+                      {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
                       {"receiver_change", std::isfinite(f.receiverChange) ? json(f.receiverChange) : json(nullptr)},
                       {"point_lights", [&] {
                          json lights = json::array();
@@ -73,10 +92,12 @@ nlohmann::json toJson(const RunRecord& run) {
     if (!f.view.is_null()) frames.back()["view"] = f.view;
     if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
     wall.push_back(f.wallMs);
-    gpuTotal.push_back(f.gpu.gpuTotalMs);
+    if (f.gpu.gpuKnown()) gpuTotal.push_back(f.gpu.gpuTotalMs);
+    cpuTotal.push_back(f.gpu.cpuTotalMs);
   }
-  json passMedians = json::object();
+  json passMedians = json::object(), cpuMedians = json::object();
   for (auto& [name, values] : perPass) passMedians[name] = median(values);
+  for (auto& [name, values] : perPassCpu) cpuMedians[name] = median(values);
   json plan = json::array();
   for (const auto& p : run.plan)
     plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
@@ -104,8 +125,10 @@ nlohmann::json toJson(const RunRecord& run) {
       {"summary",
        {{"frames", run.frames.size()},
         {"wall_ms_median", median(wall)},
-        {"gpu_total_ms_median", median(gpuTotal)},
+        {"gpu_total_ms_median", gpuTotal.empty() ? json(nullptr) : json(median(gpuTotal))},
         {"gpu_ms_median", passMedians},
+        {"cpu_total_ms_median", median(cpuTotal)},
+        {"cpu_ms_median", cpuMedians},
         {"receiver_change_mean",
          changes.empty() ? json(nullptr) : json(std::accumulate(changes.begin(), changes.end(), 0.0) / double(changes.size()))}}},
       {"parameters", run.parameters},

@@ -43,6 +43,12 @@ std::size_t residentBytes();
 /// with: float when asked for, or when a pixel is beyond half's range (gpu::writeExr)}.
 nlohmann::json pixelsRecord(const gpu::PixelCensus& census, bool floatAsked);
 
+/// The translucent objects' pixels (`translucent`, a mask from Renderer::translucentMask) and how
+/// many of them the tone map shows near white, all three channels ≥ 0.98 (`translucent_clipped`):
+/// a lit wax that reads as clipped white rather than warm (issue 16, point 5).
+nlohmann::json clippedRecord(const gpu::Image& image, const std::vector<std::uint8_t>& translucent,
+                             const gpu::ToneMapSettings& toneMap);
+
 /// The radiosity maps' state after a frame, for FrameRecord::sss (null when the renderer has none).
 nlohmann::json mapsRecord(const sss::Renderer& renderer);
 /// {key: new value} of every parameter whose value differs between two registry snapshots.

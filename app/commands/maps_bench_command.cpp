@@ -146,8 +146,9 @@ int runProbeMaps(const ProbeMapsOptions& o) {
       throw InputError("probe maps: preset " + presetName + " has no translucent object, so it has no radiosity maps");
     sss::Renderer renderer(shaders, scene, settings);
     constexpr double t = 0.0;  // nothing moves: the maps accumulate frame after frame
-    const sss::FrameTimings first = renderer.render(scene, settings, t);  // warm-up: restarts the maps
+    sss::FrameTimings first = renderer.render(scene, settings, t);  // warm-up: restarts the maps
     glFinish();
+    renderer.resolveTimings(first);
 
     std::vector<double> mapsMs, surfaceMs, frameMs, wallMs;
     for (int r = 0; r < o.repeats; ++r) {
@@ -158,8 +159,9 @@ int runProbeMaps(const ProbeMapsOptions& o) {
         throw std::runtime_error("probe maps: timed frame " + std::to_string(r) +
                                  " would not run sss.maps alone on kept light G-buffers");
       const auto start = std::chrono::steady_clock::now();
-      const sss::FrameTimings timings = renderer.render(scene, settings, t);
+      sss::FrameTimings timings = renderer.render(scene, settings, t);
       glFinish();
+      renderer.resolveTimings(timings);
       wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
       mapsMs.push_back(passMs(timings, "sss.maps"));
       surfaceMs.push_back(passMs(timings, "surface"));

@@ -215,6 +215,13 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "map in the mirror direction, or the uniform ambient sky without one."),
                                true),
                    [](auto& c) -> auto& { return c.render.specular; }));
+  r.add(bind<bool>(withDefault(declare("render.flame", "bool", "",
+                                       "Draw the flame of a burning candle (a light that follows a candle field): "
+                                       "emissive, after the surface pass, out of the light G-buffers and maps; its "
+                                       "light is the point light's. tallow bench turns it off: the CPU reference "
+                                       "has no flame to compare it with."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.flame; }));
   r.add(bind<int>(withDefault(declare("field.res", "int", "samples per axis",
                                       "Lattice resolution of field objects, isosurfaced on the GPU every frame.", 16,
                                       512),

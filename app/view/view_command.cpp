@@ -350,6 +350,8 @@ int runView(const ViewOptions& options) {
       record.timeS = feedback.frame.timeS;
       record.wallMs = feedback.frame.wallMs;
       record.gpu = feedback.frame.gpu;
+      // --stats measures: this frame's GPU times are read now, a wait the window otherwise avoids.
+      session.renderer().resolveTimings(record.gpu);
       nlohmann::json now = session.registry().snapshot(session.config());
       record.changed = changedParameters(parameters, now);
       parameters = std::move(now);

@@ -86,14 +86,15 @@ std::string defaultSaveBase(const std::string& presetName) { return "tallow-" + 
 
 void ViewPanel::record(const ViewSession::Frame& frame) {
   const double now = steadySeconds();
-  for (const auto& pass : frame.gpu.passes)
+  // GPU times of the newest frame the GPU has finished (a frame or two behind: nothing waits).
+  for (const auto& pass : frame.shown.passes)
     if (!history_.count(pass.name)) {
       passNames_.push_back(pass.name);
       history_[pass.name] = std::deque<float>(times_.size(), std::numeric_limits<float>::quiet_NaN());
     }
   for (auto& [name, values] : history_) {
     float ms = std::numeric_limits<float>::quiet_NaN();
-    for (const auto& pass : frame.gpu.passes)
+    for (const auto& pass : frame.shown.passes)
       if (pass.name == name) ms = static_cast<float>(pass.gpuMs);
     values.push_back(ms);
   }
@@ -213,8 +214,8 @@ void ViewPanel::drawPlayback(ViewSession& session, ViewRequests& requests, doubl
 
 void ViewPanel::drawFeedback(const ViewSession& session, const ViewFeedback& feedback) {
   const ViewSession::Frame& f = feedback.frame;
-  ImGui::Text("wall %.1f ms (%.3g fps)   GPU %.1f ms", f.wallMs, f.wallMs > 0.0 ? 1000.0 / f.wallMs : 0.0,
-              f.gpu.gpuTotalMs);
+  ImGui::Text("wall %.1f ms (%.3g fps)   CPU %.1f ms   GPU %.1f ms", f.wallMs, f.wallMs > 0.0 ? 1000.0 / f.wallMs : 0.0,
+              f.gpu.cpuTotalMs, f.shown.gpuKnown() ? f.shown.gpuTotalMs : 0.0);
   drawTimingGraph();
   const sss::RadiosityMaps* maps = session.renderer().radiosityMaps();
   if (maps && sss::RadiosityMaps::applies(session.config().scene, session.config().render))

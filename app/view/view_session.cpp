@@ -92,6 +92,7 @@ ViewSession::Frame ViewSession::render() {
     frame.gpu = renderer_->render(config.scene, config.render, frame.timeS);
   }
   frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  frame.shown = renderer_->latestTimings();
   return frame;
 }
 

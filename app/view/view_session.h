@@ -61,8 +61,9 @@ class ViewSession {
   std::string redo();
 
   struct Frame {
-    sss::FrameTimings gpu;
-    double wallMs = 0.0;  ///< CPU wall time of render(), which waits for the GPU's timings
+    sss::FrameTimings gpu;    ///< this frame: CPU time per pass (GPU times read later)
+    sss::FrameTimings shown;  ///< the newest frame whose GPU times are known (read without waiting)
+    double wallMs = 0.0;      ///< CPU wall time of render(), which does not wait for the GPU
     double timeS = 0.0;   ///< animation time rendered
     std::string refused;  ///< the GPU refused the configuration (checkLimits): why, in one line
   };

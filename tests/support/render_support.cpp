@@ -18,6 +18,7 @@ RenderResult renderPreset(const std::string& preset, const std::vector<std::stri
   RenderResult result;
   result.timings = renderer.render(loaded.config.scene, loaded.config.render, 0.0);
   result.image = renderer.readRadiance();
+  renderer.resolveTimings(result.timings);  // the read-back waited for the GPU
   result.gl = context->info();
   return result;
 }
@@ -35,9 +36,13 @@ PresetSession::PresetSession(const std::string& preset, const std::vector<std::s
 }
 
 gpu::Image PresetSession::render(double timeS, sss::FrameTimings* timings) {
-  const sss::FrameTimings t = renderer_->render(scene(), settings(), timeS);
-  if (timings) *timings = t;
-  return renderer_->readRadiance();
+  sss::FrameTimings t = renderer_->render(scene(), settings(), timeS);
+  gpu::Image image = renderer_->readRadiance();
+  if (timings) {
+    renderer_->resolveTimings(t);  // the read-back waited for the GPU
+    *timings = t;
+  }
+  return image;
 }
 
 std::string testScene(const std::string& name) {
