@@ -20,5 +20,7 @@ void main() {
   float x = w > 0.0 ? vUv.x / w : 2.0;
   if (abs(x) >= 1.0) discard;
   oRadiance = vec4(uRadiance * (1.5 * (1.0 - x * x)) * (1.3 - 0.6 * vUv.y), 0.0);
-  oCoverage = vec4(0.0);  // added: the coverage below stays as the surface pass wrote it
+  // Multiplied into the coverage (FlamePass's blend): r, g, b kept, alpha halved, so that the wax's
+  // pixels with the flame in front of them are told apart (Renderer::translucentMask).
+  oCoverage = vec4(1.0, 1.0, 1.0, 0.5);
 }

@@ -65,7 +65,8 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   glDepthMask(GL_FALSE);
   glDisable(GL_CULL_FACE);
   glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
+  glBlendFunci(0, GL_ONE, GL_ONE);         // radiance: added
+  glBlendFunci(1, GL_ZERO, GL_SRC_COLOR);  // coverage: alpha halved where the flame is in front
   p.use();
   emptyVao_->bind();
   for (const Light& light : scene.lights) {
@@ -87,6 +88,7 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   }
   glBindVertexArray(0);
   glUseProgram(0);
+  glBlendFunc(GL_ONE, GL_ZERO);  // GL's default, for every draw buffer
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glDisable(GL_DEPTH_TEST);

@@ -201,16 +201,24 @@ MapCoverage Renderer::mapCoverage() const {
   return m;
 }
 
-std::vector<std::uint8_t> Renderer::coverageMask(int channel) const {
-  const gpu::Image c = gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
+gpu::Image Renderer::readCoverage() const {
+  return gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
+}
+
+std::vector<std::uint8_t> Renderer::receiverMask() const {
+  const gpu::Image c = readCoverage();
   std::vector<std::uint8_t> mask(c.pixels.size());
-  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i][channel] > 0.5f ? 1 : 0;
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].b > 0.5f ? 1 : 0;
   return mask;
 }
 
-std::vector<std::uint8_t> Renderer::receiverMask() const { return coverageMask(2); }
-
-std::vector<std::uint8_t> Renderer::translucentMask() const { return coverageMask(0); }
+std::vector<std::uint8_t> Renderer::translucentMask() const {
+  // Translucent pixels have coverage alpha 1; where the flame is drawn in front it is halved.
+  const gpu::Image c = readCoverage();
+  std::vector<std::uint8_t> mask(c.pixels.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].r > 0.5f && c.pixels[i].a > 0.75f ? 1 : 0;
+  return mask;
+}
 
 std::size_t Renderer::triangleCount() const {
   return geometry_.triangleCount() + modules_.find<FieldObjects>()->triangleCount();

@@ -82,7 +82,8 @@ class Renderer {
   /// Per pixel of the last frame (top row first): 1 where the camera sees an opaque surface (a
   /// receiver of the VPLs' light), 0 elsewhere. Reads the frame back.
   std::vector<std::uint8_t> receiverMask() const;
-  /// Per pixel of the last frame: 1 where the camera sees a translucent object. Reads the frame back.
+  /// Per pixel of the last frame: 1 where the camera sees a translucent object (and no candle flame
+  /// in front of it). Reads the frame back.
   std::vector<std::uint8_t> translucentMask() const;
   const gpu::Texture& radiance() const { return target_.radiance; }
   /// The camera target's coverage (Algorithm 1: r translucent, g seen by a map, b opaque) and depth
@@ -138,8 +139,8 @@ class Renderer {
   int accumulation_ = 0;  ///< restartAccumulation() calls: the input "accumulation"
   bool forget_ = false;   ///< invalidate(): every pass of the next frame runs as changed
   DisplayPass display_;
-  /// 1 where the coverage target's channel (r translucent, g seen by a map, b opaque) is set.
-  std::vector<std::uint8_t> coverageMask(int channel) const;
+  /// The coverage target (r translucent, g seen by a map, b opaque, a halved under the flame).
+  gpu::Image readCoverage() const;
   gpu::GpuTimer timer_;
   std::vector<FrameTimings> pending_;  ///< rendered frames whose GPU times are not read yet (≤ kRing)
   FrameTimings latest_;                ///< the newest with GPU times
