@@ -56,12 +56,12 @@ for target in "$build"/fuzz_*; do
     fresh="$build/merge/$corpus_name"
     rm -rf "$fresh"
     mkdir -p "$fresh" "$seeds"
-    find "$seeds" -maxdepth 1 -type f ! -regex '.*/[0-9a-f]\{40\}' -exec cp {} "$fresh"/ \;
+    find "$seeds" -maxdepth 1 -regextype posix-extended -type f ! -regex '.*/[0-9a-f]{40}' -exec cp {} "$fresh"/ \;
     "$target" -merge=1 -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 "$fresh" "${dirs[@]}" \
       >"$build/$name.merge.log" 2>&1
-    find "$seeds" -maxdepth 1 -type f -regex '.*/[0-9a-f]\{40\}' -delete
-    find "$fresh" -maxdepth 1 -type f -regex '.*/[0-9a-f]\{40\}' -exec cp {} "$seeds"/ \;
-    echo "fuzz: $name kept corpus: $(ls "$seeds" | wc -l) input(s), $(du -sk "$seeds" | cut -f1) KiB"
+    find "$seeds" -maxdepth 1 -regextype posix-extended -type f -regex '.*/[0-9a-f]{40}' -delete
+    find "$fresh" -maxdepth 1 -regextype posix-extended -type f -regex '.*/[0-9a-f]{40}' -exec cp {} "$seeds"/ \;
+    echo "fuzz: $name kept corpus: $(ls "$seeds" | wc -l) input(s), $(du -sk --apparent-size "$seeds" | cut -f1) KiB"
   fi
 done
 if [ "$ran" -eq 0 ]; then
