@@ -9,8 +9,9 @@
 #
 #   TALLOW_FUZZ_TARGETS="ply preset"   only these targets
 #   TALLOW_FUZZ_MERGE=1                afterwards, minimise kept + working corpus into a fresh kept
-#                                      corpus (libFuzzer -merge=1: the fewest inputs that keep every
-#                                      feature), replacing tests/fuzz/corpus/<name>/; commit it
+#                                      corpus (libFuzzer -merge=1: the named seeds plus the fewest
+#                                      found inputs that add a feature), in tests/fuzz/corpus/<name>/;
+#                                      commit it
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${TALLOW_FUZZ_BUILD_DIR:-$root/build-fuzz}"
@@ -49,15 +50,18 @@ for target in "$build"/fuzz_*; do
   fi
   grep -E "stat::number_of_executed_units|stat::new_units_added" "$build/$name.log" | sed "s/^/fuzz: $name /" || true
   if [ "$merge" = "1" ]; then
+    # Named inputs (hand-made seeds, fixed crashes: anything not called by its SHA-1 as libFuzzer
+    # names what it finds) are kept as they are; merging adds only the inputs that reach features
+    # they do not, and drops earlier merged inputs that no longer add any.
     fresh="$build/merge/$corpus_name"
     rm -rf "$fresh"
-    mkdir -p "$fresh"
+    mkdir -p "$fresh" "$seeds"
+    find "$seeds" -maxdepth 1 -regextype posix-extended -type f ! -regex '.*/[0-9a-f]{40}' -exec cp {} "$fresh"/ \;
     "$target" -merge=1 -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 "$fresh" "${dirs[@]}" \
       >"$build/$name.merge.log" 2>&1
-    rm -rf "$seeds"
-    mkdir -p "$seeds"
-    cp "$fresh"/* "$seeds"/
-    echo "fuzz: $name kept corpus: $(ls "$seeds" | wc -l) input(s), $(du -sk "$seeds" | cut -f1) KiB"
+    find "$seeds" -maxdepth 1 -regextype posix-extended -type f -regex '.*/[0-9a-f]{40}' -delete
+    find "$fresh" -maxdepth 1 -regextype posix-extended -type f -regex '.*/[0-9a-f]{40}' -exec cp {} "$seeds"/ \;
+    echo "fuzz: $name kept corpus: $(ls "$seeds" | wc -l) input(s), $(du -sk --apparent-size "$seeds" | cut -f1) KiB"
   fi
 done
 if [ "$ran" -eq 0 ]; then

@@ -1,9 +1,9 @@
 #include "sss/reference/reference_integrator.h"
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -19,6 +19,7 @@
 #include "gpu/hdr_io.h"
 #include "sss/bssrdf/bssrdf.h"
 #include "sss/field_source.h"
+#include "sss/reference/parallel_for.h"
 #include "sss/scene_geometry.h"
 #include "sss/view_setup.h"
 
@@ -478,7 +479,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     const glm::dvec3 albedo(o.albedo);
     return albedo / kPi * e + albedo * glm::dvec3(scene.ambient);
   };
-  tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+  parallelFor(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y != rows.end(); ++y)
       for (int x = 0; x < W; ++x) {
         PixelHit& px = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x)];
@@ -549,7 +550,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       const int M = t.points;
       std::vector<LitPoint> points(static_cast<std::size_t>(M));
       std::vector<char> any(static_cast<std::size_t>(M), 0);
-      tbb::parallel_for(tbb::blocked_range<int>(0, M, 256), [&](const tbb::blocked_range<int>& r) {
+      parallelFor(tbb::blocked_range<int>(0, M, 256), [&](const tbb::blocked_range<int>& r) {
         for (int i = r.begin(); i != r.end(); ++i) {
           const std::optional<SurfaceSample> sample = sampleSurface(t, settings.seed, kStreamLitPoints, pass, s, i);
           if (!sample) continue;
@@ -585,7 +586,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
         const TranslucentObject& t = objects[s];
         const int N = settings.emitterPoints;
         std::vector<Emitter> made(static_cast<std::size_t>(N));
-        tbb::parallel_for(tbb::blocked_range<int>(0, N, 16), [&](const tbb::blocked_range<int>& r) {
+        parallelFor(tbb::blocked_range<int>(0, N, 16), [&](const tbb::blocked_range<int>& r) {
           for (int j = r.begin(); j != r.end(); ++j) {
             Emitter& e = made[static_cast<std::size_t>(j)];
             const std::optional<SurfaceSample> sample = sampleSurface(t, settings.seed, kStreamEmitters, pass, s, j);
@@ -604,7 +605,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     // 2. Every translucent pixel gathers the object's lit points (Eq. 7 by area sampling), Russian
     //    roulette on exp(−σ_tr r), and the pass estimate joins the running mean and variance.
     const double n1 = static_cast<double>(passes + 1);
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, H, 8, 0, W, 8), [&](const tbb::blocked_range2d<int>& tile) {
+    parallelFor(tbb::blocked_range2d<int>(0, H, 8, 0, W, 8), [&](const tbb::blocked_range2d<int>& tile) {
       for (int y = tile.rows().begin(); y != tile.rows().end(); ++y)
         for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
           const std::size_t index = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
