@@ -745,7 +745,7 @@ def report_gpu(folder, md):
         add("The device bench measures a real GPU in one run of at most 8 minutes: `scripts/device_bundle.sh` packs")
         add("Tallow with its libraries, and its `bench.sh` writes `results.md` and `results.json` there")
         add("(docs/device-bench.md). Copied into `%s/` beside this file, they become this section when RESULTS is" % rel)
-    add("regenerated.")
+        add("regenerated.")
     else:
         dev = gpu["device"]
         name = dev.get("nvidia_smi_name") or dev.get("GL_RENDERER")
