@@ -216,7 +216,8 @@ TEST_F(LongBench, SigintKeepsTheRowsFinished) {
   EXPECT_EQ(bench["run"]["state"], "interrupted");
   const int rows = bench["run"]["rows_written"].get<int>();
   EXPECT_GE(rows, 1);
-  EXPECT_LT(rows, 24);
+  // 8 rows each for the maps and no-cache, which read sss.samples; albedo does not: one row (17).
+  EXPECT_LT(rows, 17);
   EXPECT_EQ(static_cast<int>(bench["rows"].size()), rows);
   EXPECT_EQ(countLines(out / "bench.csv"), rows + 1);
   for (const json& row : bench["rows"]) {
@@ -227,7 +228,7 @@ TEST_F(LongBench, SigintKeepsTheRowsFinished) {
     EXPECT_NE(p.out().find(row["row"].get<std::string>()), std::string::npos);
   }
   EXPECT_NE(p.out().find("(reference ε "), std::string::npos) << p.out();
-  EXPECT_NE(p.err().find("bench stopped by SIGINT after " + std::to_string(rows) + " of 24 row(s)"), std::string::npos)
+  EXPECT_NE(p.err().find("bench stopped by SIGINT after " + std::to_string(rows) + " of 17 row(s)"), std::string::npos)
       << p.err();
   EXPECT_EQ(hiddenFiles(dir.path()), std::vector<std::string>{});
 }
