@@ -694,10 +694,7 @@ int runBench(const BenchOptions& o) {
   contextOptions.visible = false;
   const auto context = gpu::GlContext::create(contextOptions);
   const gpu::ShaderLibrary shaders = makeShaderLibrary(o.scene.shaderDir);
-  state.gpu = {{"backend", std::string(gpu::glBackendName(context->backend()))},
-               {"GL_VENDOR", context->info().vendor},
-               {"GL_RENDERER", context->info().renderer},
-               {"GL_VERSION", context->info().version}};
+  state.gpu = glJson(*context);
   const bool figures = gnuplotAvailable();
   if (!figures) std::fprintf(stderr, "tallow: gnuplot is not installed: no comparison pictures and no plots\n");
 

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/provenance.h"
 #include "app/config/input_error.h"
 #include "gpu/atomic_file.h"
 #include "gpu/gl_context.h"
@@ -128,9 +129,7 @@ int runProbeCost(const ProbeCostOptions& o) {
   }
   nlohmann::json result = {{"models", models}, {"repeats", o.repeats}};
   if (context)
-    result["gpu"] = {{"backend", std::string(gpu::glBackendName(context->backend()))},
-                     {"GL_RENDERER", context->info().renderer},
-                     {"GL_VERSION", context->info().version}};
+    result["gpu"] = glJson(*context);
   gpu::writeTextFileAtomically(o.out, result.dump(2) + "\n");
   return 0;
 }

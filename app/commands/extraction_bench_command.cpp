@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/provenance.h"
 #include "app/commands/progress.h"
 #include "app/config/input_error.h"
 #include "geometry/blob_field.h"
@@ -138,9 +139,7 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
       {"block_cells", geometry::GpuDualContouring::kBlockCells},
       {"placement", std::string(geometry::vertexPlacementName(geometry::kDefaultPlacement))},
       {"gpu",
-       {{"backend", std::string(gpu::glBackendName(context->backend()))},
-        {"GL_RENDERER", context->info().renderer},
-        {"GL_VERSION", context->info().version}}},
+       glJson(*context)},
       {"notes",
        "medians of `repeats` runs after one warm-up; gpu_extract_ms from GL_TIMESTAMP queries around extract(), "
        "gpu_extract_wall_ms is extract() + glFinish() on the CPU clock; upload excluded from both; cpu_mesh_ms is "

@@ -101,11 +101,7 @@ nlohmann::json toJson(const RunRecord& run) {
   json plan = json::array();
   for (const auto& p : run.plan)
     plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
-  const json gl = {{"backend", std::string(gpu::glBackendName(run.backend))},
-                   {"GL_VENDOR", run.gl.vendor},
-                   {"GL_RENDERER", run.gl.renderer},
-                   {"GL_VERSION", run.gl.version},
-                   {"GL_SHADING_LANGUAGE_VERSION", run.gl.glsl}};
+  const json gl = glJson(run.backend, run.gl);
   json provenance = provenanceJson();
   provenance["gl"] = gl;
   json state = {{"state", run.state}, {"frames_requested", run.framesRequested}, {"frames_written", run.frames.size()}};

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/provenance.h"
 #include "app/commands/progress.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
@@ -258,9 +259,7 @@ int runProbeMaps(const ProbeMapsOptions& o) {
         {"per_sample_ms", fitBoth.b},
         {"r2", fitBoth.r2}}},
       {"gpu",
-       {{"backend", std::string(gpu::glBackendName(context->backend()))},
-        {"GL_RENDERER", context->info().renderer},
-        {"GL_VERSION", context->info().version}}},
+       glJson(*context)},
       {"notes",
        "after one warm-up frame (which restarts the maps: light G-buffers, depth pre-pass, first N samples; its times "
        "are first_frame), `repeats` frames with nothing changed and sss.frames raised so the maps keep accumulating: "

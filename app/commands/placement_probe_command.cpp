@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/provenance.h"
 #include "app/config/input_error.h"
 #include "geometry/analytic_fields.h"
 #include "geometry/blob_field.h"
@@ -362,9 +363,7 @@ int runProbePlacement(const ProbePlacementOptions& o) {
       {"repeats", o.repeats},
       {"default_placement", std::string(geometry::vertexPlacementName(geometry::kDefaultPlacement))},
       {"gpu",
-       {{"backend", std::string(gpu::glBackendName(context->backend()))},
-        {"GL_RENDERER", context->info().renderer},
-        {"GL_VERSION", context->info().version}}},
+       glJson(*context)},
       {"notes",
        "distances in cells of the measured lattice; hausdorff_cells = max of the two directed maxima; mesh to "
        "surface at every triangle's vertices, edge midpoints and centroid (mean weighted by area), surface to "

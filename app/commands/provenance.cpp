@@ -84,4 +84,14 @@ nlohmann::json provenanceJson() {
           {"cpu", {{"model", cpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}}}};
 }
 
+nlohmann::json glJson(gpu::GlBackend backend, const gpu::GlInfo& info) {
+  return {{"backend", std::string(gpu::glBackendName(backend))},
+          {"GL_VENDOR", info.vendor},
+          {"GL_RENDERER", info.renderer},
+          {"GL_VERSION", info.version},
+          {"GL_SHADING_LANGUAGE_VERSION", info.glsl}};
+}
+
+nlohmann::json glJson(const gpu::GlContext& context) { return glJson(context.backend(), context.info()); }
+
 }  // namespace tallow::app

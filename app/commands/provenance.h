@@ -4,6 +4,8 @@
 // the run started (UTC), and the CPU. The GL strings come with the context (frame_stats.h).
 #include <nlohmann/json.hpp>
 
+#include "gpu/gl_context.h"
+
 #include <string>
 
 namespace tallow::app {
@@ -25,5 +27,9 @@ std::string cpuModel();
 
 /// {"tallow_version", "git_commit", "command_line", "date", "cpu": {"model", "hardware_threads"}}.
 nlohmann::json provenanceJson();
+/// The GL context an output was measured with: {"backend", "GL_VENDOR", "GL_RENDERER", "GL_VERSION",
+/// "GL_SHADING_LANGUAGE_VERSION"} (stats.json, bench.json and the probes' reports).
+nlohmann::json glJson(gpu::GlBackend backend, const gpu::GlInfo& info);
+nlohmann::json glJson(const gpu::GlContext& context);
 
 }  // namespace tallow::app
