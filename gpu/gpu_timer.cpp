@@ -47,12 +47,4 @@ std::optional<std::vector<double>> GpuTimer::times(std::uint64_t frame, bool wai
   return ms;
 }
 
-std::vector<PassTiming> GpuTimer::collect() {
-  const Slot& s = slot(frame_);
-  const auto ms = times(frame_, true);
-  std::vector<PassTiming> out;
-  for (std::size_t i = 0; i < s.used; ++i) out.push_back({s.pairs[i].name, ms ? (*ms)[i] : 0.0, 0.0});
-  return out;
-}
-
 }  // namespace tallow::gpu

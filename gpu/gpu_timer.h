@@ -34,8 +34,6 @@ class GpuTimer {
   /// the GPU has finished all of them (never stalls); with wait = true it waits for them. nullopt
   /// when not available yet (wait = false) or no longer kept (the ring reused the frame's slot).
   std::optional<std::vector<double>> times(std::uint64_t frame, bool wait) const;
-  /// Compatibility for a single frame: beginFrame … collect() waits for this frame's times.
-  std::vector<PassTiming> collect();
 
  private:
   struct Pair {
