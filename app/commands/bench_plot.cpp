@@ -27,15 +27,6 @@ constexpr int kMarkers[] = {7, 5, 9, 13, 11, 15};
 /// A y axis spanning more than this ratio is logarithmic.
 constexpr double kLogRatio = 5.0;
 
-std::string gnuplotString(const std::string& text) {
-  std::string q = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') q += '\\';
-    q += c;
-  }
-  return q + "\"";
-}
-
 std::size_t characters(const std::string& text) {
   std::size_t n = 0;
   for (const char c : text) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;

@@ -25,16 +25,6 @@ constexpr int kColourBar = 130;  ///< right of the differences: the bar, its tic
 constexpr const char* kPalette =
     "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
 
-/// Text for a gnuplot string in double quotes.
-std::string gnuplotString(const std::string& text) {
-  std::string q = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') q += '\\';
-    q += c;
-  }
-  return q + "\"";
-}
-
 void writeBytes(const std::filesystem::path& file, const void* data, std::size_t bytes) {
   std::FILE* f = std::fopen(file.c_str(), "wb");
   if (!f) throw std::runtime_error("cannot write " + file.string());

@@ -14,6 +14,15 @@ constexpr const char* kPreamble = "set datafile separator ','\nset terminal pngc
 
 bool gnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
+std::string gnuplotString(const std::string& text) {
+  std::string q = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += c;
+  }
+  return q + "\"";
+}
+
 bool runGnuplot(const std::filesystem::path& script, const PlotScriptWriter& writeScript,
                 const std::vector<std::filesystem::path>& outputs, const std::string& what, bool keepScript) {
   if (!gnuplotAvailable()) {

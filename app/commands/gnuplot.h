@@ -13,6 +13,9 @@ namespace tallow::app {
 /// Whether `gnuplot` is on PATH.
 bool gnuplotAvailable();
 
+/// `text` as a gnuplot string literal in double quotes (quotes and backslashes escaped).
+std::string gnuplotString(const std::string& text);
+
 /// Writes the script (a preamble that reads comma-separated data and draws 900x600 PNGs, then the
 /// lines `writeScript` prints; it gets, for each of `outputs`, the temporary file gnuplot must draw
 /// into, `.NAME.tmp` beside it) to `script`, runs gnuplot on it, removes the script unless
