@@ -12,6 +12,7 @@
 
 #include "app/config/params.h"
 #include "gpu/image_io.h"
+#include "support/failure_contract.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
 #include "support/xvfb.h"
@@ -19,24 +20,9 @@
 namespace tallow {
 namespace {
 
+using test::expectCleanFailure;
+using test::fileCount;
 using test::runTallow;
-
-int fileCount(const std::filesystem::path& dir) {
-  if (!std::filesystem::exists(dir)) return 0;
-  int n = 0;
-  for ([[maybe_unused]] const auto& e : std::filesystem::recursive_directory_iterator(dir)) ++n;
-  return n;
-}
-
-/// The failure contract: non-zero exit, exactly one line on stderr starting "tallow: " and
-/// containing `expected`, and nothing written under `out`.
-void expectCleanFailure(const test::CommandResult& r, const std::string& expected, const std::filesystem::path& out) {
-  EXPECT_NE(r.exitCode, 0);
-  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("tallow: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(expected), std::string::npos) << "stderr: " << r.err << "expected: " << expected;
-  EXPECT_EQ(fileCount(out), 0) << "files were written under " << out;
-}
 
 TEST(Cli, CaptureOfABunnyWritesPngExrAndStats) {
   test::TempDir dir;

@@ -16,30 +16,16 @@
 #include <sstream>
 
 #include "gpu/image_io.h"
+#include "support/failure_contract.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
 
 namespace tallow {
 namespace {
 
+using test::expectCleanFailure;
+using test::fileCount;
 using test::runTallow;
-
-int fileCount(const std::filesystem::path& dir) {
-  if (!std::filesystem::exists(dir)) return 0;
-  int n = 0;
-  for ([[maybe_unused]] const auto& e : std::filesystem::recursive_directory_iterator(dir)) ++n;
-  return n;
-}
-
-/// The failure contract: non-zero exit, exactly one line on stderr, starting "tallow: " and
-/// containing `expected`, and nothing written under `dir`.
-void expectOneLine(const test::CommandResult& r, const std::string& expected, const std::filesystem::path& dir) {
-  EXPECT_NE(r.exitCode, 0);
-  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("tallow: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(expected), std::string::npos) << "stderr: " << r.err << "expected: " << expected;
-  EXPECT_EQ(fileCount(dir), 0) << "files were written under " << dir;
-}
 
 /// A budget of 4 GiB whatever the driver reports, so that the refusals below hold on any GPU.
 const std::vector<std::string> kFourGiB = {"TALLOW_GPU_MEMORY_MB=4096"};
@@ -49,24 +35,24 @@ TEST(Hardening, CaptureRefusesTimesOutsideTheAnimation) {
     test::TempDir dir;
     const auto r = runTallow({"capture", "--preset", "slab", "--size", "16x16", "--time", t, "--out",
                               (dir.path() / "out").string()});
-    expectOneLine(r, "--time: ", dir.path());
+    expectCleanFailure(r, "--time: ", dir.path());
   }
   test::TempDir dir;
-  expectOneLine(runTallow({"mesh", "--preset", "blob", "--time", "-1", "--out", (dir.path() / "m.ply").string()}),
+  expectCleanFailure(runTallow({"mesh", "--preset", "blob", "--time", "-1", "--out", (dir.path() / "m.ply").string()}),
                 "--time: -1 s is out of range [0, 1e+06]", dir.path());
 }
 
 TEST(Hardening, ReferenceRefusesANonExrOutputAndANanError) {
   test::TempDir dir;
   // EXR data under a .png name (and its ref_stderr.png beside it) would mislead every reader.
-  expectOneLine(runTallow({"reference", "--preset", "slab", "--size", "8x8", "--spp", "1", "--out",
+  expectCleanFailure(runTallow({"reference", "--preset", "slab", "--size", "8x8", "--spp", "1", "--out",
                            (dir.path() / "ref.png").string()}),
                 "--out: expected a .exr file, got", dir.path());
   // A NaN given is a bad value, not the absence of the option.
-  expectOneLine(runTallow({"reference", "--preset", "slab", "--rel-error", "nan", "--out",
+  expectCleanFailure(runTallow({"reference", "--preset", "slab", "--rel-error", "nan", "--out",
                            (dir.path() / "ref.exr").string()}),
                 "--rel-error: must be a positive number", dir.path());
-  expectOneLine(runTallow({"bench", "--preset", "slab", "--ref-rel-error", "nan", "--out", (dir.path() / "b").string()}),
+  expectCleanFailure(runTallow({"bench", "--preset", "slab", "--ref-rel-error", "nan", "--out", (dir.path() / "b").string()}),
                 "--ref-rel-error: must be a positive number", dir.path());
 }
 
@@ -74,41 +60,41 @@ TEST(Hardening, BenchNamesTheOptionTheUserTyped) {
   test::TempDir dir;
   const auto sweep = runTallow({"bench", "--preset", "slab", "--sweep", "sss.mpas=1,2", "--ref-spp", "1", "--out",
                                 (dir.path() / "b").string()});
-  expectOneLine(sweep, "--sweep sss.mpas=1,2: unknown parameter \"sss.mpas\" (did you mean \"sss.maps\"?)", dir.path());
+  expectCleanFailure(sweep, "--sweep sss.mpas=1,2: unknown parameter \"sss.mpas\" (did you mean \"sss.maps\"?)", dir.path());
   EXPECT_EQ(sweep.err.find("--set"), std::string::npos) << sweep.err;
   const auto value = runTallow({"bench", "--preset", "slab", "--sweep", "sss.maps=4,0", "--ref-spp", "1", "--out",
                                 (dir.path() / "b").string()});
-  expectOneLine(value, "--sweep sss.maps=4,0: sss.maps: 0 is out of range", dir.path());
+  expectCleanFailure(value, "--sweep sss.maps=4,0: sss.maps: 0 is out of range", dir.path());
   const auto methods = runTallow({"bench", "--preset", "slab", "--methods", "albedo,radiosity-map", "--ref-spp", "1",
                                   "--out", (dir.path() / "b").string()});
-  expectOneLine(methods, "--methods: unknown value \"radiosity-map\" (did you mean \"radiosity-maps\"?)", dir.path());
+  expectCleanFailure(methods, "--methods: unknown value \"radiosity-map\" (did you mean \"radiosity-maps\"?)", dir.path());
   EXPECT_EQ(methods.err.find("--set"), std::string::npos) << methods.err;
 }
 
 TEST(Hardening, MistypedCommandsAndOptionsGetTheClosestName) {
   test::TempDir dir;
   const std::string out = (dir.path() / "out").string();
-  expectOneLine(runTallow({"captur", "--preset", "slab", "--out", out}),
+  expectCleanFailure(runTallow({"captur", "--preset", "slab", "--out", out}),
                 "unknown command \"captur\" (did you mean \"capture\"?)", dir.path());
-  expectOneLine(runTallow({"capture", "--presets", "slab", "--out", out}),
+  expectCleanFailure(runTallow({"capture", "--presets", "slab", "--out", out}),
                 "capture: unknown option \"--presets\" (did you mean \"--preset\"?)", dir.path());
-  expectOneLine(runTallow({"capture", "--preset", "slab", "--frmaes=3", "--out", out}),
+  expectCleanFailure(runTallow({"capture", "--preset", "slab", "--frmaes=3", "--out", out}),
                 "capture: unknown option \"--frmaes\" (did you mean \"--frames\"?)", dir.path());
-  expectOneLine(runTallow({"probe", "bssrdf", "--modle", "standard", "--in", "x.csv", "--out", out}),
+  expectCleanFailure(runTallow({"probe", "bssrdf", "--modle", "standard", "--in", "x.csv", "--out", out}),
                 "probe bssrdf: unknown option \"--modle\" (did you mean \"--model\"?)", dir.path());
-  expectOneLine(runTallow({"--preset", "slab"}), "unknown option \"--preset\" (options follow the command", dir.path());
+  expectCleanFailure(runTallow({"--preset", "slab"}), "unknown option \"--preset\" (options follow the command", dir.path());
 }
 
 TEST(Hardening, AnEmptyPresetNameIsRefused) {
   test::TempDir dir;
-  expectOneLine(runTallow({"capture", "--preset", "", "--size", "8x8", "--out", (dir.path() / "out").string()}),
+  expectCleanFailure(runTallow({"capture", "--preset", "", "--size", "8x8", "--out", (dir.path() / "out").string()}),
                 "--preset: empty", dir.path());
 }
 
 TEST(Hardening, OutputsThatCannotBeWrittenAreRefusedBeforeRendering) {
   test::TempDir dir;
   // A screenshot into a folder that does not exist: today's check walked up to "." and passed.
-  expectOneLine(runTallow({"view", "--preset", "slab", "--frames", "1", "--screenshot",
+  expectCleanFailure(runTallow({"view", "--preset", "slab", "--frames", "1", "--screenshot",
                            (dir.path() / "missing" / "shot.png").string()}),
                 "--screenshot: folder " + (dir.path() / "missing").string() + " does not exist", dir.path());
   // A folder that cannot be created although its parent looks writable (root may write anywhere
@@ -116,7 +102,7 @@ TEST(Hardening, OutputsThatCannotBeWrittenAreRefusedBeforeRendering) {
   const auto start = std::chrono::steady_clock::now();
   const auto r = runTallow({"capture", "--preset", "candle", "--size", "640x360", "--accumulate", "8", "--out",
                             "/proc/tallow-hardening-test/out"});
-  expectOneLine(r, "--out: cannot create /proc/tallow-hardening-test/out", dir.path());
+  expectCleanFailure(r, "--out: cannot create /proc/tallow-hardening-test/out", dir.path());
   EXPECT_EQ(r.err.find("filesystem error"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
   // The candle at 640x360 with 8 renders takes tens of seconds on llvmpipe; the check, none.
@@ -142,7 +128,7 @@ TEST(Hardening, MemoryBudgetCountsEverythingAFrameAllocates) {
     std::vector<std::string> args = {"capture", "--out", (dir.path() / "out").string()};
     args.insert(args.end(), c.args.begin(), c.args.end());
     const auto r = runTallow(args, kFourGiB);
-    expectOneLine(r, c.expected, dir.path());
+    expectCleanFailure(r, c.expected, dir.path());
     EXPECT_NE(r.err.find("over the 4.0 GiB this GPU offers (TALLOW_GPU_MEMORY_MB)"), std::string::npos) << r.err;
   }
 }
@@ -151,7 +137,7 @@ TEST(Hardening, ReadersRefuseDevicesAndOversizedFilesBeforeReading) {
   test::TempDir dir;
   const std::string out = (dir.path() / "out").string();
   // /dev/zero would be read until memory runs out.
-  expectOneLine(runTallow({"capture", "--preset", "slab", "--size", "8x8", "--script", "/dev/zero", "--out", out}),
+  expectCleanFailure(runTallow({"capture", "--preset", "slab", "--size", "8x8", "--script", "/dev/zero", "--out", out}),
                 "/dev/zero: not a regular file (a character device)", dir.path());
   // A 2 GiB mesh (sparse: no disk written) is refused by its size, not read whole first.
   test::TempDir data;
@@ -162,7 +148,7 @@ TEST(Hardening, ReadersRefuseDevicesAndOversizedFilesBeforeReading) {
     "lights": [{"type": "directional", "direction": [0, 1, 0], "irradiance": [1, 1, 1]}],
     "objects": [{"mesh": "huge.ply", "material": "Marble"}]})");
   const auto start = std::chrono::steady_clock::now();
-  expectOneLine(runTallow({"capture", "--preset", preset.string(), "--size", "8x8", "--out", out}),
+  expectCleanFailure(runTallow({"capture", "--preset", preset.string(), "--size", "8x8", "--out", out}),
                 "huge.ply: 2.0 GiB is over the 1.0 GiB limit for a PLY mesh", dir.path());
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
 }

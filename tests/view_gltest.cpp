@@ -13,6 +13,7 @@
 
 #include "gpu/image_io.h"
 #include "gpu/tonemap.h"
+#include "support/failure_contract.h"
 #include "support/run_tallow.h"
 #include "support/temp_dir.h"
 #include "support/xvfb.h"
@@ -334,10 +335,7 @@ TEST(View, SavedPresetCapturesToTheWindowsRadiance) {
 /// `expected`, and no file left in `dir` beyond `inputs` it already held.
 void expectCleanFailure(const test::CommandResult& r, const std::string& expected, const test::TempDir& dir,
                         const std::vector<std::string>& inputs) {
-  EXPECT_NE(r.exitCode, 0);
-  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("tallow: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(expected), std::string::npos) << "stderr: " << r.err << "expected: " << expected;
+  test::expectOneErrorLine(r, expected);
   EXPECT_EQ(dir.entries(), inputs) << "files were written";
 }
 
