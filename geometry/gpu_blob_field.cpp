@@ -11,7 +11,8 @@ GpuBlobField::GpuBlobField(const gpu::ShaderLibrary& library)
 
 void GpuBlobField::setUniforms(gpu::Program& program, const BlobField& blob) {
   std::array<glm::vec3, BlobParams::kBlobCount> centres{};
-  for (int i = 0; i < BlobParams::kBlobCount; ++i) centres[static_cast<std::size_t>(i)] = glm::vec3(blob.unscaledCentre(i));
+  for (int i = 0; i < BlobParams::kBlobCount; ++i)
+    centres[static_cast<std::size_t>(i)] = glm::vec3(blob.unscaledCentre(i));
   const BlobParams& p = blob.params();
   program.set("uBlobCentres", centres.data(), BlobParams::kBlobCount);
   program.set("uBlobSigma", static_cast<float>(p.sigma));

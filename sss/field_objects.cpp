@@ -69,8 +69,10 @@ bool FieldObjects::stale(double timeS, int res, geometry::VertexPlacement placem
 void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry) {
   for (auto& e : entries_) {
     if (!e->stale(timeS, res, placement)) continue;
-    if (!e->dc || e->res != res || e->placement != placement) e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
-    if (!blobOnGpu_ && e->source.kind() == FieldKind::Blob) blobOnGpu_ = std::make_unique<geometry::GpuBlobField>(shaders_);
+    if (!e->dc || e->res != res || e->placement != placement)
+      e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
+    if (!blobOnGpu_ && e->source.kind() == FieldKind::Blob)
+      blobOnGpu_ = std::make_unique<geometry::GpuBlobField>(shaders_);
     putFieldLattice(e->source, timeS, *e->dc, blobOnGpu_.get());
     e->res = res;
     e->placement = placement;

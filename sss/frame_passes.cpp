@@ -46,9 +46,12 @@ std::string FieldSamplePass::reason(const FrameState& state) const {
   const std::string lattice = std::to_string(state.settings.fieldRes) + "^3 lattice";
   const auto cpu = fieldCount(state.scene) - blobs;
   std::string out = std::to_string(fieldCount(state.scene)) + " field object(s) at a new time:";
-  if (blobs > 0) out.append(" ").append(std::to_string(blobs)).append(" blob(s) evaluated on the GPU on a ").append(lattice).append(" (uniforms only)");
+  if (blobs > 0)
+    out.append(" ").append(std::to_string(blobs)).append(" blob(s) evaluated on the GPU on a ").append(lattice)
+        .append(" (uniforms only)");
   if (blobs > 0 && cpu > 0) out.append(";");
-  if (cpu > 0) out.append(" ").append(std::to_string(cpu)).append(" sampled on the CPU on a ").append(lattice).append(" and uploaded");
+  if (cpu > 0)
+    out.append(" ").append(std::to_string(cpu)).append(" sampled on the CPU on a ").append(lattice).append(" and uploaded");
   return out;
 }
 
@@ -73,7 +76,7 @@ std::string FieldExtractPass::reason(const FrameState& state) const {
   return std::string("GPU dual contouring (vertices at the ") +
          (state.settings.fieldPlacement == geometry::VertexPlacement::Qef ? "tangent planes' quadric minimum"
                                                                           : "edge crossings' mass point") +
-         ") of the uploaded lattice(s) into transform-feedback buffers";
+         ") of the field lattice(s) into transform-feedback buffers";
 }
 
 PassIo FieldExtractPass::io(const FrameState&) const { return {{resource::kFieldLattice}, {resource::kGeometry}, {}}; }

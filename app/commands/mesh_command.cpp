@@ -60,7 +60,8 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
       part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
     } else {
       // As the renderer: a blob evaluated on the GPU with analytic normals, the others uploaded.
-      if (!blobOnGpu && f.source.kind() == sss::FieldKind::Blob) blobOnGpu = std::make_unique<geometry::GpuBlobField>(*shaders);
+      if (!blobOnGpu && f.source.kind() == sss::FieldKind::Blob)
+        blobOnGpu = std::make_unique<geometry::GpuBlobField>(*shaders);
       const auto dc = sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement);
       sss::putFieldLattice(f.source, options.timeS, *dc, blobOnGpu.get());
       dc->extract();
