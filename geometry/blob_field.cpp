@@ -4,7 +4,21 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "gpu/glsl_shared.h"  // TALLOW_FN and GLM's GLSL vocabulary; no OpenGL
+
+// Φ_t and its gradient: the lines the GPU evaluates (shaders/fields/blob.glsl), compiled here in
+// double, the precision the CPU mesher, `tallow field` and the reference integrator have always used.
+namespace tallow::geometry::blob_f64 {
+using namespace glm;
+using real = double;
+using real2 = glm::dvec2;
+using real3 = glm::dvec3;
+#include "shaders/fields/blob.glsl"
+}  // namespace tallow::geometry::blob_f64
+
 namespace tallow::geometry {
+
+static_assert(blob_f64::BLOB_COUNT == BlobParams::kBlobCount, "shaders/fields/blob.glsl's blob count");
 
 BlobField::BlobField(double t, const BlobParams& params) : params_(params), t_(t) {
   if (!(params_.sigma > 0.0) || !(params_.iso > 0.0) || !(params_.iso < BlobParams::kBlobCount) ||
@@ -22,24 +36,11 @@ BlobField::BlobField(double t, const BlobParams& params) : params_(params), t_(t
 }
 
 double BlobField::value(glm::dvec3 p) const {
-  const glm::dvec3 q = p / params_.scale;
-  double phi = 0.0;
-  for (const glm::dvec3& c : centres_) {
-    const glm::dvec3 d = q - c;
-    phi += std::exp(-params_.sigma * glm::dot(d, d));
-  }
-  return params_.iso - phi;
+  return blob_f64::blobFieldValue(p, centres_.data(), params_.sigma, params_.iso, params_.scale);
 }
 
 glm::dvec3 BlobField::gradient(glm::dvec3 p) const {
-  // ∇_p (iso − Σ exp(−σ‖q − c‖²)) with q = p / scale: Σ 2σ (q − c) exp(…) / scale.
-  const glm::dvec3 q = p / params_.scale;
-  glm::dvec3 g(0.0);
-  for (const glm::dvec3& c : centres_) {
-    const glm::dvec3 d = q - c;
-    g += (2.0 * params_.sigma * std::exp(-params_.sigma * glm::dot(d, d))) * d;
-  }
-  return g / params_.scale;
+  return blob_f64::blobFieldGradient(p, centres_.data(), params_.sigma, params_.scale);
 }
 
 Aabb BlobField::bounds() const {

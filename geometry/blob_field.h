@@ -2,6 +2,8 @@
 // The animated blob of the radiosity-maps paper (§4): Φ_t(p) = Σᵢ exp(−σ‖p − pᵢ(t)‖²) over four
 // blobs moving on periodic Lissajous paths with different periods, so that the aggregate repeats
 // only after the least common multiple of the periods. Exposed as iso − Φ_t (negative inside).
+// value() and gradient() evaluate shaders/fields/blob.glsl, the lines the GPU evaluates from the
+// same centres, σ, iso and scale (GpuBlobField).
 #include "geometry/scalar_field.h"
 
 #include <array>
@@ -40,6 +42,8 @@ class BlobField final : public ScalarField {
 
   /// Centre pᵢ(t) of blob i in world units (metres).
   glm::dvec3 centre(int i) const { return centres_[static_cast<std::size_t>(i)] * params_.scale; }
+  /// Centre pᵢ(t) in the blob's unscaled units (what shaders/fields/blob.glsl takes).
+  glm::dvec3 unscaledCentre(int i) const { return centres_[static_cast<std::size_t>(i)]; }
   const BlobParams& params() const { return params_; }
   double time() const { return t_; }
 

@@ -22,8 +22,9 @@ GLuint groupsFor(std::size_t items) { return static_cast<GLuint>((items + kWorkG
 
 }  // namespace
 
-GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis, VertexPlacement placement)
-    : n_(samplesPerAxis), placement_(placement) {
+GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis, VertexPlacement placement,
+                                     NormalSource normals)
+    : n_(samplesPerAxis), placement_(placement), normals_(normals) {
   if (n_ < 2) throw std::runtime_error("GpuDualContouring: need at least 2 samples per axis, got " + std::to_string(n_));
   const std::size_t cells = static_cast<std::size_t>(n_ - 1);
   blocks_ = (n_ - 1 + kBlockCells - 1) / kBlockCells;
@@ -38,6 +39,7 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   const std::vector<std::string> defines{blockDefine()};
   std::vector<std::string> vertexDefines = defines;
   if (placement_ == VertexPlacement::Qef) vertexDefines.emplace_back("DC_QEF");
+  if (normals_ == NormalSource::BlobGradient) vertexDefines.emplace_back("DC_BLOB_NORMALS");
   classify_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/classify.comp"}}, defines});
   vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
                                       {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
@@ -95,8 +97,30 @@ void GpuDualContouring::upload(const SampledLattice& lattice) {
     throw std::runtime_error("GpuDualContouring::upload: lattice has " + std::to_string(lattice.n) +
                              " samples per axis, built for " + std::to_string(n_));
   glTextureSubImage3D(field_.id(), 0, 0, 0, 0, n_, n_, n_, GL_RED, GL_FLOAT, lattice.values.data());
-  origin_ = glm::vec3(lattice.origin);
-  cellSize_ = static_cast<float>(lattice.cellSize);
+  setLatticeFrame(lattice.origin, lattice.cellSize);
+  ++uploads_;
+}
+
+void GpuDualContouring::fillOnGpu(gpu::Program& fill, glm::dvec3 origin, double cellSize) {
+  constexpr GLuint kFillGroup = 4;  // local_size of the fill programs (fields/blob_lattice.comp): 4³
+  setLatticeFrame(origin, cellSize);
+  fill.set("uSamples", n_);
+  fill.set("uOrigin", origin_);
+  fill.set("uCellSize", cellSize_);
+  glBindImageTexture(0, field_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  fill.use();
+  const GLuint groups = (static_cast<GLuint>(n_) + kFillGroup - 1) / kFillGroup;
+  glDispatchCompute(groups, groups, groups);
+  glUseProgram(0);
+  // extract() reads the texture through samplers (texelFetch, texture); readLattice() and a later
+  // upload() through texture commands.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  ++gpuFills_;
+}
+
+void GpuDualContouring::setLatticeFrame(glm::dvec3 origin, double cellSize) {
+  origin_ = glm::vec3(origin);
+  cellSize_ = static_cast<float>(cellSize);
   for (gpu::Program* p : {&vertices_, &quads_}) {
     p->set("uOrigin", origin_);
     p->set("uCellSize", cellSize_);
@@ -104,8 +128,15 @@ void GpuDualContouring::upload(const SampledLattice& lattice) {
   uploaded_ = true;
 }
 
+std::vector<float> GpuDualContouring::readLattice() const {
+  const std::size_t count = static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_);
+  std::vector<float> values(count);
+  glGetTextureImage(field_.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(count * sizeof(float)), values.data());
+  return values;
+}
+
 void GpuDualContouring::extract() {
-  if (!uploaded_) throw std::runtime_error("GpuDualContouring::extract: upload() a lattice first");
+  if (!uploaded_) throw std::runtime_error("GpuDualContouring::extract: upload() or fillOnGpu() a lattice first");
   glQueryCounter(timerStart_.id(), GL_TIMESTAMP);
   const std::array<GLuint, 4> drawReset{kPointsPerBlock, 0, 0, 0};  // count, instances, first, base
   const std::array<GLuint, 4> counterReset{0, 0, 1, 1};             // vertices, groups x, y, z

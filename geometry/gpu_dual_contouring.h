@@ -1,13 +1,17 @@
 #pragma once
 // GPU dual contouring (surface nets after Gibson 1998, as the radiosity-maps paper §4 cites) of a
-// SampledLattice uploaded as a GL_R32F 3D texture. Four passes, all on the GPU:
+// lattice of field samples in a GL_R32F 3D texture, filled either by upload() of a SampledLattice
+// sampled on the CPU (candle, mesh fields) or on the GPU by fillOnGpu() with a compute program that
+// evaluates the field itself (the blob: GpuBlobField, shaders/fields/blob_lattice.comp; no CPU
+// lattice, no upload). Four passes, all on the GPU:
 //   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
 //      indirect draw command (instances = active blocks);
 //   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (usually
 //      one patch, up to four where a face is ambiguous, see shaders/dual_contouring/patches.glsl),
 //      placed by `VertexPlacement`: the mean of the patch's edge crossings, or the minimum of the
 //      probabilistic quadric of their tangent planes kept in the cell (qef.glsl); normal from the
-//      texture's gradient, captured by transform feedback;
+//      texture's gradient, or with NormalSource::BlobGradient from the blob's analytic gradient
+//      (shaders/fields/blob.glsl, uniforms set on normalProgram()), captured by transform feedback;
 //   3. index_map.comp: first vertex of each cell (emission order) → GL_R32I 3D index map,
 //      dispatched indirectly;
 //   4. cells.vert + quads.geom: two triangles per sign-changing edge, outward winding, captured by
@@ -22,8 +26,15 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace tallow::geometry {
+
+/// Where pass 2 takes the vertex normals from.
+enum class NormalSource {
+  LatticeGradient,  ///< central differences of the texture: any field
+  BlobGradient,     ///< the blob's analytic gradient at the vertex (GpuBlobField sets its uniforms)
+};
 
 class GpuDualContouring {
  public:
@@ -43,12 +54,24 @@ class GpuDualContouring {
   /// `placement`. Needs a current GL 4.5 context. Throws std::runtime_error when the buffers would
   /// exceed kMaxBufferBytes.
   GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis,
-                    VertexPlacement placement = kDefaultPlacement);
+                    VertexPlacement placement = kDefaultPlacement,
+                    NormalSource normals = NormalSource::LatticeGradient);
 
   /// Copies `lattice` into the GL_R32F 3D texture (n must match the constructor's).
   void upload(const SampledLattice& lattice);
+  /// Fills the texture on the GPU: dispatches `fill` (a compute program with local size 4³ whose
+  /// field uniforms the caller has set) over the n³ samples with the texture bound as image unit 0
+  /// (`uLattice`, r32f) and uSamples, uOrigin, uCellSize set; sample s sits at origin + cellSize·s
+  /// as in SampledLattice. Ends with the barrier that makes the writes visible to extract().
+  void fillOnGpu(gpu::Program& fill, glm::dvec3 origin, double cellSize);
   /// Runs the four passes on the uploaded lattice; no CPU read-back, no stall.
   void extract();
+  /// The vertex pass's program (pass 2): with NormalSource::BlobGradient its blob uniforms
+  /// (shaders/fields/blob_uniforms.glsl) must be set here before extract().
+  gpu::Program& normalProgram() { return vertices_; }
+  NormalSource normalSource() const { return normals_; }
+  std::size_t uploadCount() const { return uploads_; }  ///< upload() calls so far
+  std::size_t gpuFillCount() const { return gpuFills_; }  ///< fillOnGpu() calls so far
   /// Draws the last extraction as GL_TRIANGLES with the caller's program bound (attribute 0:
   /// position in world units, 1: unit normal), by glDrawTransformFeedback(Instanced), `instances`
   /// times (gl_InstanceID).
@@ -65,9 +88,12 @@ class GpuDualContouring {
   /// GPU time of the last extract() from GL_TIMESTAMP queries (llvmpipe's first GL_TIME_ELAPSED
   /// of a context reads garbage, so the pair of timestamps is used instead).
   double lastExtractionMs() const;
+  /// The n³ values of the texture (x fastest, as SampledLattice::values), however it was filled.
+  std::vector<float> readLattice() const;
   /// Throws std::runtime_error (one line) when the last extraction dropped vertices or triangles.
   void checkOverflow() const;
 
+  int samplesPerAxis() const { return n_; }
   std::size_t vertexCapacity() const { return vertexCapacity_; }
   std::size_t triangleCapacity() const { return triangleCapacity_; }
   std::size_t bufferBytes() const;     ///< GPU memory of buffers, texture and index map
@@ -76,10 +102,14 @@ class GpuDualContouring {
  private:
   int n_ = 0, blocks_ = 0;
   VertexPlacement placement_ = kDefaultPlacement;
+  NormalSource normals_ = NormalSource::LatticeGradient;
   std::size_t vertexCapacity_ = 0, triangleCapacity_ = 0;
   glm::vec3 origin_{0.0f};
   float cellSize_ = 0.0f;
-  bool uploaded_ = false;
+  bool uploaded_ = false;  ///< the texture holds a lattice (uploaded or filled on the GPU)
+  std::size_t uploads_ = 0, gpuFills_ = 0;
+
+  void setLatticeFrame(glm::dvec3 origin, double cellSize);
 
   gpu::Program classify_, vertices_, indexMap_, quads_;
   gpu::Texture field_, indices_;

@@ -12,7 +12,7 @@ constexpr int kPaddingCells = 1;
 constexpr int kMinSamples = 2 * kPaddingCells + 2;
 }  // namespace
 
-SampledLattice sampleField(const ScalarField& field, const Aabb& box, int n) {
+SampledLattice latticeOver(const Aabb& box, int n) {
   if (n < kMinSamples) throw std::invalid_argument("sampleField: need at least 4 samples per axis");
   if (box.empty()) throw std::invalid_argument("sampleField: empty box");
   const glm::dvec3 size(box.size());
@@ -23,6 +23,11 @@ SampledLattice sampleField(const ScalarField& field, const Aabb& box, int n) {
   lattice.n = n;
   lattice.cellSize = side / static_cast<double>(n - 1 - 2 * kPaddingCells);
   lattice.origin = glm::dvec3(box.centre()) - glm::dvec3(0.5 * side + kPaddingCells * lattice.cellSize);
+  return lattice;
+}
+
+SampledLattice sampleField(const ScalarField& field, const Aabb& box, int n) {
+  SampledLattice lattice = latticeOver(box, n);
   lattice.values.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
 
   const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(n));

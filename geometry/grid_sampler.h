@@ -23,6 +23,9 @@ struct SampledLattice {
   glm::dvec3 position(int x, int y, int z) const { return origin + cellSize * glm::dvec3(x, y, z); }
 };
 
+/// The lattice sampleField(field, box, n) fills, without its values (n, origin, cell size): what
+/// a field evaluated on the GPU (GpuBlobField) is filled over.
+SampledLattice latticeOver(const Aabb& box, int n);
 /// Samples `field` on n³ points (n ≥ 4) covering the cube around `box` (side = its largest
 /// extent, same centre) padded by one cell on every side, so that a surface inside `box` never
 /// touches the outermost samples. Runs on all hardware threads (std::thread, split along z).

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 
 #include "sss/field_source.h"
 
@@ -14,7 +16,7 @@ struct FieldObjects::Entry {
   int res = 0;
   geometry::VertexPlacement placement = geometry::kDefaultPlacement;
   double timeS = std::numeric_limits<double>::quiet_NaN();
-  bool pending = false;  ///< sampled and uploaded, not extracted yet
+  bool pending = false;  ///< sampled (uploaded or filled on the GPU), not extracted yet
   bool extracted = false;
 
   Entry(int index, const SceneObject& object) : objectIndex(index), source(object) {}
@@ -22,6 +24,24 @@ struct FieldObjects::Entry {
     return dc == nullptr || r != res || p != placement || (source.animated() && t != timeS);
   }
 };
+
+std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
+                                                                const FieldSource& source, int n,
+                                                                geometry::VertexPlacement placement) {
+  const geometry::NormalSource normals =
+      source.kind() == FieldKind::Blob ? geometry::NormalSource::BlobGradient : geometry::NormalSource::LatticeGradient;
+  return std::make_unique<geometry::GpuDualContouring>(shaders, n, placement, normals);
+}
+
+void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
+                     geometry::GpuBlobField* blobOnGpu) {
+  // The blob from its centres at t (uniforms): no CPU lattice, no upload. The others on the CPU.
+  if (const std::optional<geometry::BlobField> blob = source.blobAt(timeS)) {
+    if (!blobOnGpu) throw std::logic_error("putFieldLattice: a blob field needs a GpuBlobField");
+    blobOnGpu->fill(dc, *blob, source.blobLattice(dc.samplesPerAxis()));
+  } else
+    dc.upload(source.sample(timeS, dc.samplesPerAxis()));
+}
 
 FieldObjects::FieldObjects(const gpu::ShaderLibrary& shaders, const Scene& scene) : shaders_(shaders) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -50,8 +70,10 @@ void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement place
   for (auto& e : entries_) {
     if (!e->stale(timeS, res, placement)) continue;
     if (!e->dc || e->res != res || e->placement != placement)
-      e->dc = std::make_unique<geometry::GpuDualContouring>(shaders_, res, placement);
-    e->dc->upload(e->source.sample(timeS, res));
+      e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
+    if (!blobOnGpu_ && e->source.kind() == FieldKind::Blob)
+      blobOnGpu_ = std::make_unique<geometry::GpuBlobField>(shaders_);
+    putFieldLattice(e->source, timeS, *e->dc, blobOnGpu_.get());
     e->res = res;
     e->placement = placement;
     e->timeS = timeS;

@@ -1,11 +1,14 @@
 #pragma once
 // The field objects of a scene (ShapeKind::Field): each frame whose time (or field.res) changed,
-// the field at that time is sampled on the CPU over a lattice, uploaded, and isosurfaced on the GPU
-// by GpuDualContouring; otherwise the last transform-feedback mesh is drawn again. Each object's
+// the field at that time is put on a lattice and isosurfaced on the GPU by GpuDualContouring;
+// otherwise the last transform-feedback mesh is drawn again. A blob's lattice is filled on the GPU
+// from its centres at t (geometry::GpuBlobField, shaders/fields/blob.glsl) and its normals come from
+// its analytic gradient; candle and mesh fields are sampled on the CPU and uploaded. Each object's
 // field, bounds and sampling come from its sss::FieldSource (shared with `tallow mesh` / `field`).
 #include <memory>
 #include <vector>
 
+#include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_dual_contouring.h"
 #include "geometry/scalar_field.h"
 #include "gpu/shader_library.h"
@@ -13,6 +16,19 @@
 #include "sss/scene_geometry.h"
 
 namespace tallow::sss {
+
+class FieldSource;
+
+/// An extractor for `source` at n³ samples, as the renderer makes it: a blob's vertex normals from
+/// its analytic gradient, the other kinds' from the lattice.
+std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
+                                                                const FieldSource& source, int n,
+                                                                geometry::VertexPlacement placement);
+/// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: a blob evaluated on the GPU
+/// by `blobOnGpu` (uniforms and one dispatch; needed for a blob), the other kinds sampled on the
+/// CPU and uploaded.
+void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
+                     geometry::GpuBlobField* blobOnGpu);
 
 class FieldObjects {
  public:
@@ -29,8 +45,9 @@ class FieldObjects {
   /// with vertices placed by `placement`: nothing extracted yet, res or placement changed, or t
   /// changed for an animated field (blob, candle).
   bool stale(double timeS, int res, geometry::VertexPlacement placement) const;
-  /// CPU sampling at t and upload of every stale field (pass "field.sample"); re-attaches the
-  /// extractors to `geometry` (call geometry.update afterwards).
+  /// The lattice at t of every stale field (pass "field.sample"): a blob's filled on the GPU (the
+  /// CPU only sets uniforms and dispatches), the others sampled on the CPU and uploaded;
+  /// re-attaches the extractors to `geometry` (call geometry.update afterwards).
   void sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
   void extract();
@@ -44,6 +61,7 @@ class FieldObjects {
  private:
   const gpu::ShaderLibrary& shaders_;
   std::vector<std::unique_ptr<Entry>> entries_;
+  std::unique_ptr<geometry::GpuBlobField> blobOnGpu_;  ///< made at the first blob lattice
 };
 
 }  // namespace tallow::sss

@@ -104,6 +104,7 @@ FieldSource& FieldSource::operator=(FieldSource&&) noexcept = default;
 bool fieldAnimated(const FieldDesc& desc) { return desc.kind != FieldKind::Mesh || desc.meltDurationS > 0.0; }
 
 bool FieldSource::animated() const { return fieldAnimated(parts_->desc); }
+FieldKind FieldSource::kind() const { return parts_->desc.kind; }
 
 geometry::Aabb FieldSource::bounds() const { return parts_->bounds; }
 
@@ -125,6 +126,16 @@ geometry::SampledLattice FieldSource::sample(double timeS, int n) const {
   // which the bounds contain.
   if (parts_->desc.kind == FieldKind::Blob || parts_->melts()) return geometry::sampleField(*field, parts_->bounds, n);
   return geometry::sampleField(*field, n);
+}
+
+std::optional<geometry::BlobField> FieldSource::blobAt(double timeS) const {
+  if (parts_->desc.kind != FieldKind::Blob) return std::nullopt;
+  return geometry::BlobField(timeS, parts_->blobParams());
+}
+
+geometry::SampledLattice FieldSource::blobLattice(int n) const {
+  if (parts_->desc.kind != FieldKind::Blob) throw std::logic_error("FieldSource::blobLattice: not a blob field");
+  return geometry::latticeOver(parts_->bounds, n);  // as sample() over the same box
 }
 
 }  // namespace tallow::sss

@@ -5,7 +5,9 @@
 // The renderer (FieldObjects) and the `tallow mesh` / `tallow field` commands all go through this
 // class, so they sample and evaluate exactly the same numbers.
 #include <memory>
+#include <optional>
 
+#include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
 #include "geometry/grid_sampler.h"
 #include "geometry/scalar_field.h"
@@ -36,12 +38,19 @@ class FieldSource {
 
   /// True when the field changes with t (blob, candle, a mesh field with melt_s > 0).
   bool animated() const;
+  FieldKind kind() const;
   /// Field units: contains the surface at every t (what the renderer's bounds are fitted to).
   geometry::Aabb bounds() const;
   /// The field at time t (seconds), field units; value < 0 inside (geometry::ScalarField).
   std::unique_ptr<geometry::ScalarField> at(double timeS) const;
   /// at(t) sampled on n³ points over the box the renderer isosurfaces for this kind of field.
   geometry::SampledLattice sample(double timeS, int n) const;
+  /// A blob field (FieldKind::Blob) at time t, which the renderer evaluates on the GPU
+  /// (geometry::GpuBlobField) instead of sample(); std::nullopt for the other kinds.
+  std::optional<geometry::BlobField> blobAt(double timeS) const;
+  /// The lattice sample(t, n) fills for a blob (the box of every t), without values: where the GPU
+  /// evaluates blobAt(t). Throws std::logic_error for the other kinds.
+  geometry::SampledLattice blobLattice(int n) const;
 
   struct Parts;  ///< per kind, in field_source.cpp
 

@@ -40,8 +40,19 @@ PassIo shadowIo(const char* written) {
 bool FieldSamplePass::needed(const FrameState& state) const { return fieldCount(state.scene) > 0; }
 
 std::string FieldSamplePass::reason(const FrameState& state) const {
-  return std::to_string(fieldCount(state.scene)) + " field object(s) at a new time: sampled on the CPU on a " +
-         std::to_string(state.settings.fieldRes) + "^3 lattice and uploaded";
+  const auto blobs = std::count_if(state.scene.objects.begin(), state.scene.objects.end(), [](const SceneObject& o) {
+    return o.shape == ShapeKind::Field && o.field.kind == FieldKind::Blob;
+  });
+  const std::string lattice = std::to_string(state.settings.fieldRes) + "^3 lattice";
+  const auto cpu = fieldCount(state.scene) - blobs;
+  std::string out = std::to_string(fieldCount(state.scene)) + " field object(s) at a new time:";
+  if (blobs > 0)
+    out.append(" ").append(std::to_string(blobs)).append(" blob(s) evaluated on the GPU on a ").append(lattice)
+        .append(" (uniforms only)");
+  if (blobs > 0 && cpu > 0) out.append(";");
+  if (cpu > 0)
+    out.append(" ").append(std::to_string(cpu)).append(" sampled on the CPU on a ").append(lattice).append(" and uploaded");
+  return out;
 }
 
 PassIo FieldSamplePass::io(const FrameState& state) const {
@@ -65,7 +76,7 @@ std::string FieldExtractPass::reason(const FrameState& state) const {
   return std::string("GPU dual contouring (vertices at the ") +
          (state.settings.fieldPlacement == geometry::VertexPlacement::Qef ? "tangent planes' quadric minimum"
                                                                           : "edge crossings' mass point") +
-         ") of the uploaded lattice(s) into transform-feedback buffers";
+         ") of the field lattice(s) into transform-feedback buffers";
 }
 
 PassIo FieldExtractPass::io(const FrameState&) const { return {{resource::kFieldLattice}, {resource::kGeometry}, {}}; }

@@ -15,8 +15,8 @@ class FramePass : public Pass {
   virtual bool needed(const FrameState& state) const = 0;
 };
 
-/// field.sample: every field object at t (or at a new field.res) sampled on the CPU over a lattice
-/// and uploaded (FieldObjects::sample).
+/// field.sample: every field object at t (or at a new field.res) put on a lattice: a blob evaluated
+/// on the GPU from uniforms, the others sampled on the CPU and uploaded (FieldObjects::sample).
 class FieldSamplePass final : public FramePass {
  public:
   std::string name() const override { return "field.sample"; }

@@ -12,6 +12,7 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <random>
 #include <string>
 #include <utility>
 
@@ -54,6 +55,32 @@ TEST(BlobField, AnalyticGradientMatchesCentralDifferences) {
       // 1e-6 relative: the central-difference error (step² · Φ''' and round-off) is ~1e-9 here.
       EXPECT_LE(glm::length(analytic - numeric), 1e-6 * glm::length(analytic)) << "t=" << t;
     }
+  }
+}
+
+// The same check at random points of the lattice's box, where the field ranges from deep inside to
+// far outside (shaders/fields/blob.glsl's gradient, which BlobField::gradient evaluates, against
+// differences of its value: two separate functions of the shared file). Points where the gradient
+// is below 1% of its largest value over the box (far from every blob, or at a saddle) are skipped:
+// there the central difference's round-off (~1e-16 / step) is no longer small relative to ‖∇‖.
+TEST(BlobField, AnalyticGradientMatchesCentralDifferencesAtRandomPoints) {
+  std::mt19937 rng(16);
+  for (double t : {0.0, 3.95, 11.3}) {
+    const BlobField field(t);
+    const Aabb box = field.bounds();
+    std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y), uz(box.min.z, box.max.z);
+    // The largest ‖∇‖ of one blob: 2σ r e^{−σr²} at r = 1/√(2σ), per unscaled unit.
+    const double largest = std::sqrt(2.0 * field.params().sigma) * std::exp(-0.5) / field.params().scale;
+    int checked = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const glm::dvec3 p(ux(rng), uy(rng), uz(rng));
+      const glm::dvec3 analytic = field.gradient(p);
+      if (glm::length(analytic) < 0.01 * largest) continue;
+      ++checked;
+      EXPECT_LE(glm::length(analytic - field.ScalarField::gradient(p)), 1e-6 * glm::length(analytic))
+          << "t=" << t << " at " << p.x << ", " << p.y << ", " << p.z;
+    }
+    EXPECT_GT(checked, 200) << "t=" << t;
   }
 }
 

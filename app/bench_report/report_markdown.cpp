@@ -200,7 +200,8 @@ std::string renderMarkdown(const json& r) {
     }
   md << "\n## Dual contouring\n\n";
   md << "Cells = (res − 1)³ per extraction; `field.extract` is the GPU's four passes (docs/presets.md). The "
-        "field is sampled on the CPU each frame before it (`field.sample`, in the frame's wall time).\n\n";
+        "lattice is filled each frame before it (`field.sample`, in the frame's wall time): on the GPU for a blob, "
+        "sampled on the CPU and uploaded for a candle or mesh field.\n\n";
   md << "| lattice | extract GPU [ms] | cells/s | triangles | triangles/s | frame fps |\n|---:|---:|---:|---:|---:|---:|\n";
   for (const json& d : fig["dual_contouring"])
     md << "| " << d["res"].get<int>() << "³ | " << fmt(d["extract_gpu_ms"], 3) << " | " << si(d["cells_per_s"]) << " | "

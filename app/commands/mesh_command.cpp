@@ -3,15 +3,18 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "app/commands/field_command.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "geometry/cpu_mesher.h"
+#include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_dual_contouring.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
+#include "sss/field_objects.h"
 
 namespace tallow::app {
 namespace {
@@ -50,16 +53,19 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
     shaders = std::make_unique<gpu::ShaderLibrary>(makeShaderLibrary(options.scene.shaderDir));
   }
   geometry::TriangleMesh world;
+  std::unique_ptr<geometry::GpuBlobField> blobOnGpu;
   for (const PlacedField& f : fields) {
-    const geometry::SampledLattice lattice = f.source.sample(options.timeS, res);
     geometry::TriangleMesh part;
     if (options.cpu) {
-      part = geometry::meshOnCpu(lattice, *f.source.at(options.timeS));
+      part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
     } else {
-      geometry::GpuDualContouring dc(*shaders, res, loaded.config.render.fieldPlacement);
-      dc.upload(lattice);
-      dc.extract();
-      part = dc.readBack();
+      // As the renderer: a blob evaluated on the GPU with analytic normals, the others uploaded.
+      if (!blobOnGpu && f.source.kind() == sss::FieldKind::Blob)
+        blobOnGpu = std::make_unique<geometry::GpuBlobField>(*shaders);
+      const auto dc = sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement);
+      sss::putFieldLattice(f.source, options.timeS, *dc, blobOnGpu.get());
+      dc->extract();
+      part = dc->readBack();
     }
     if (part.normals.size() != part.positions.size()) geometry::computeVertexNormals(part);
     appendWorld(world, part, f.model);

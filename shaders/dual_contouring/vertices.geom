@@ -4,14 +4,22 @@
 // 1998), or, built with DC_QEF, at the minimum of the probabilistic quadric of their tangent planes
 // kept inside the cell (qef.glsl; the normal at a crossing is the lattice's gradient there,
 // crossingGradient below); then the face vertices the cell owns; normal = normalised field
-// gradient by central differences on the texture. Captured by transform feedback as (position,
+// gradient by central differences on the texture, or, built with DC_BLOB_NORMALS (the blob, filled
+// on the GPU by fields/blob_lattice.comp), the blob's analytic gradient at the vertex
+// (fields/blob.glsl, the lines geometry::BlobField::gradient evaluates). Captured by transform feedback as (position,
 // normal, cell, bits); the vertices of a cell are consecutive (one invocation emits them in order).
 // The counter also builds the indirect dispatch of the index-map pass (one work group per 64
 // vertices).
 #include "dual_contouring/lattice.glsl"
 #include "dual_contouring/patches.glsl"
+// Outside the #ifdefs: the loader expands each file once per stage, where it is first included,
+// whatever the preprocessor later keeps, so a file both variants need must not first appear in one.
+#include "common/shared.glsl"
 #ifdef DC_QEF
 #include "dual_contouring/qef.glsl"
+#endif
+#ifdef DC_BLOB_NORMALS
+#include "fields/blob_uniforms.glsl"
 #endif
 
 layout(points) in;
@@ -62,12 +70,17 @@ vec3 crossingGradient(ivec3 a, int k, float t) {
 #endif
 
 void emitVertex(vec3 s, int cell, uint bits) {
+  vec3 position = uOrigin + uCellSize * s;
+#ifdef DC_BLOB_NORMALS
+  vec3 g = blobGradientAt(position);  // analytic: exact at the vertex, no lattice error
+#else
   const float h = 0.5;  // half-cell central differences (trilinear texture)
   vec3 g = vec3(sampleLinear(s + vec3(h, 0, 0)) - sampleLinear(s - vec3(h, 0, 0)),
                 sampleLinear(s + vec3(0, h, 0)) - sampleLinear(s - vec3(0, h, 0)),
                 sampleLinear(s + vec3(0, 0, h)) - sampleLinear(s - vec3(0, 0, h)));
+#endif
   float len = length(g);
-  tfPosition = uOrigin + uCellSize * s;
+  tfPosition = position;
   tfNormal = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);
   tfCell = cell;
   tfBits = int(bits);
