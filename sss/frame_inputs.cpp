@@ -64,6 +64,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("sss.texel_plane", [](S s) { return s.sss.texelPlane; }));
     t.push_back(setting("sss.gather", [](S s) { return s.sss.computeGather; }));
     t.push_back(setting("sss.stereographic", [](S s) { return s.sss.stereographic; }));
+    t.push_back(setting("sss.point_share", [](S s) { return s.sss.pointShare; }));
     t.push_back(setting("sslpv.grid", [](S s) { return s.sslpv.grid; }));
     t.push_back(setting("sslpv.steps", [](S s) { return s.sslpv.steps; }));
     t.push_back(setting("sslpv.skip", [](S s) { return s.sslpv.skip; }));

@@ -29,6 +29,10 @@ struct SssSettings {
   float viewWeight = 0.0f;    ///< sss.view_weight: p of Algorithm 1's per-map weight cos^p θ (0: the paper)
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
+  /// sss.point_share: the share of point-light samples drawn from the stereographic density about
+  /// the light instead of Eq. 12 (shaders/maps/estimator.glsl, issue 17); 0: Eq. 12 alone (the
+  /// default until the share is measured against the reference: docs/radiosity-maps.md).
+  float pointShare = 0.0f;
   bool lightMapAuto = false;  ///< sss.light_map_auto: raise the light map size against pearling
   bool computeGather = true;  ///< sss.gather: false = the paper's fragment pass, true = compute pass
   bool projectedArea = true;  ///< sss.projected_area: the sampling plane's Jacobian (false: the paper's Eq. 9)

@@ -9,6 +9,7 @@
 
 #include "support/dipole_totals.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -423,6 +424,101 @@ TEST(HaltonDirection, UnitLengthAndCoverage) {
 }
 
 // --- Stereographic correction (Eqs. 13–14) --------------------------------------------------
+
+// --- Point lights' second distance density and the mixture (issue 17) ------------------------------
+
+/// ∫_a^b f by Simpson's rule with n (even) panels.
+template <class F>
+double simpson(const F& f, double a, double b, int n) {
+  const double h = (b - a) / n;
+  double sum = f(a) + f(b);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(a + i * h);
+  return sum * h / 3.0;
+}
+
+/// ∫ over α and over r ∈ [r(t0), r(t1)] of p₂(r, α), through t = r/(r + R) ∈ [0, 1), which maps the
+/// density's r⁻³ tail onto a finite interval (dr = R/(1 − t)² dt).
+double stereoMass(double t0, double t1, double radius) {
+  return simpson([&](double t) {
+    if (t >= 1.0) return 0.0;  // the integrand tends to 0 there (4(1 − t)/(π t³) · 2π)
+    const double r = radius * t / (1.0 - t);
+    return 2.0 * kPi * stereoRadialPdf(r, radius) * radius / ((1.0 - t) * (1.0 - t));
+  }, t0, t1, 2000);
+}
+
+TEST(StereoDensity, IntegratesToOneOverThePlane) {
+  for (const double radius : {0.01, 1.0, 37.0}) EXPECT_NEAR(stereoMass(0.0, 1.0, radius), 1.0, 1e-6) << radius;
+}
+
+TEST(StereoDensity, SampledDistancesFollowItsPdf) {
+  // 20 bins of equal width in t = r/(r + R); expected counts from the quadrature of the pdf, observed
+  // ones from r = 2R √(ξ/(1 − ξ)) with ξ from the estimator's random streams.
+  constexpr int kBins = 20, kSamples = 200000;
+  const double radius = 2.0;
+  std::vector<int> counts(kBins, 0);
+  for (int j = 0; j < kSamples; ++j) {
+    const RandomStreamId id{static_cast<std::uint32_t>(j % 512), static_cast<std::uint32_t>(j / 512), 3, 7, 0, 0, 0};
+    const double r = sampleStereoRadius(radiosityRandom<double>(id), radius);
+    ++counts[std::min(kBins - 1, static_cast<int>(r / (r + radius) * kBins))];
+  }
+  double chi2 = 0.0;
+  for (int b = 0; b < kBins; ++b) {
+    const double expected = kSamples * stereoMass(double(b) / kBins, double(b + 1) / kBins, radius);
+    chi2 += (counts[b] - expected) * (counts[b] - expected) / expected;
+  }
+  EXPECT_LT(chi2, 43.82);  // χ² with 19 degrees of freedom at p = 0.001
+}
+
+TEST(MixtureSampling, WithoutTheSecondDensityTheWeightIsEq12s) {
+  // r/p(r, α) with Eq. 11's p = σ_tr e^{−σ_tr r}/(2π), computed here.
+  for (const double r : {0.0, 0.3, 4.0, 11.0})
+    EXPECT_NEAR(mixtureWeight(r, 0.8, 5.0, 0.0), r * 2.0 * kPi / (0.8 * std::exp(-0.8 * r)),
+                1e-12 * (1.0 + r * 2.0 * kPi / (0.8 * std::exp(-0.8 * r))));
+}
+
+TEST(MixtureSampling, UnbiasedForAFarReachingIntegrandWhereEq12AloneIsNot) {
+  // f = (1 + r²/L²)⁻² per unit area of the plane: ∫ f dA = π L². With 1/σ_tr = 0.5 mm, Eq. 12's
+  // samples stop at 16.6/σ_tr = 8.3 mm, beyond which lies 1/(1 + 8.3²/L²) = 85% of ∫ f for L = 20 mm:
+  // the light a point light's far wax gives (the candle's lower wall), which Eq. 12 alone misses.
+  const double L = 20.0, sigmaTr = 2.0, radius = 10.0, exact = kPi * L * L;
+  const glm::dvec3 xo(1.0, -2.0, 0.5), t1(1.0, 0.0, 0.0), t2(0.0, 1.0, 0.0);
+  constexpr int kSamples = 200000;
+  const auto estimate = [&](double share, double& standardError) {
+    double sum = 0.0, sumSquares = 0.0;
+    for (int j = 0; j < kSamples; ++j) {
+      const RandomStreamId id{static_cast<std::uint32_t>(j % 256), static_cast<std::uint32_t>(j / 256), 1, 2, 0, 0, 0};
+      const PlanarSample s = drawMixtureSample<double>(xo, t1, t2, sigmaTr, radius, share, id, 1u);
+      EXPECT_NEAR(glm::length(s.xj - xo), s.r, 1e-9 * (1.0 + s.r));
+      const double q = 1.0 + s.r * s.r / (L * L);
+      const double v = s.weight / (q * q);
+      sum += v;
+      sumSquares += v * v;
+    }
+    const double mean = sum / kSamples;
+    standardError = std::sqrt(std::max(0.0, sumSquares / kSamples - mean * mean) / kSamples);
+    return mean;
+  };
+  for (const double share : {0.1, 0.25, 0.5, 0.9}) {
+    double se = 0.0;
+    const double m = estimate(share, se);
+    std::printf("[ mis ] share %.2f: %.2f ± %.2f (exact %.2f)\n", share, m, se, exact);
+    EXPECT_LT(se, 0.02 * exact) << share;
+    EXPECT_NEAR(m, exact, 4.0 * se) << share;
+  }
+  double se = 0.0;
+  EXPECT_LT(estimate(0.0, se), 0.2 * exact);  // Eq. 12 alone: the 85% beyond its reach is lost
+}
+
+TEST(MixtureSampling, FloatAndDoubleDrawTheSameDistances) {
+  const glm::dvec3 xo(0.0), t1(1.0, 0.0, 0.0), t2(0.0, 0.0, 1.0);
+  for (std::uint32_t j = 0; j < 2000; ++j) {
+    const RandomStreamId id{j, 5, 0, 1, 2, j % 7, 0};
+    const PlanarSample f = drawMixtureSample<float>(xo, t1, t2, 0.6, 12.0, 0.25, id, 7u);
+    const PlanarSample d = drawMixtureSample<double>(xo, t1, t2, 0.6, 12.0, 0.25, id, 7u);
+    EXPECT_NEAR(f.r, d.r, 1e-5 * (1.0 + d.r)) << j;
+    EXPECT_NEAR(f.weight, d.weight, 1e-4 * (1.0 + d.weight)) << j;
+  }
+}
 
 TEST(StereographicLookup, ZeroOffsetLooksUpAlongXoMinusXl) {
   // r → 0: ℓ = ((x_o − x_ℓ) − (x_ℓ − x_o))/‖·‖ = −a/‖a‖ with a = x_ℓ − x_o, so

@@ -7,7 +7,7 @@
 // What counts as a FLOP: +, −, ×, ÷ of two operands (1 each), and each call of exp, log, sqrt,
 // inversesqrt, sin, cos, sinh, cosh, asinh, pow (1 each, listed apart as `special`: the GPU's special-function units
 // run them). Sign flips are free (folded into the next instruction), and comparisons, min, max,
-// abs, clamp, floor and ceil are counted as `other`, not as FLOPs. GLM's vector functions (dot,
+// abs, clamp, floor, ceil (and fract's floor) are counted as `other`, not as FLOPs. GLM's vector functions (dot,
 // cross, length, normalize) are counted through the scalar operations they are made of.
 #include <glm/glm.hpp>
 
@@ -77,6 +77,8 @@ class CountedReal {
   friend CountedReal abs(CountedReal a) { return ++counts().other, raw(std::fabs(a.v_)); }
   friend CountedReal floor(CountedReal a) { return ++counts().other, raw(std::floor(a.v_)); }
   friend CountedReal ceil(CountedReal a) { return ++counts().other, raw(std::ceil(a.v_)); }
+  /// GLSL's fract: x − floor(x) (one subtraction and a floor).
+  friend CountedReal fract(CountedReal a) { return ++counts().add, ++counts().other, raw(a.v_ - std::floor(a.v_)); }
   friend CountedReal min(CountedReal a, CountedReal b) { return ++counts().other, raw(b.v_ < a.v_ ? b.v_ : a.v_); }
   friend CountedReal max(CountedReal a, CountedReal b) { return ++counts().other, raw(a.v_ < b.v_ ? b.v_ : a.v_); }
   friend CountedReal clamp(CountedReal x, CountedReal lo, CountedReal hi) { return min(max(x, lo), hi); }

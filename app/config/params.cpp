@@ -364,6 +364,14 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "planar sampling (the paper's Fig. 4a)."),
                                true),
                    [](auto& c) -> auto& { return c.render.sss.stereographic; }));
+  r.add(bind<float>(withDefault(declare("sss.point_share", "float", "",
+                                        "Point lights: the share of samples drawn uniformly in direction about the "
+                                        "light (mapped stereographically onto x_o's tangent plane) instead of Eq. 12's "
+                                        "exponential, weighted by the mixture's density. It reaches wax lit from "
+                                        "centimetres away, which Eq. 12 almost never samples and cuts off at "
+                                        "16.6/sigma_tr; 0: Eq. 12 alone (the paper).", 0.0, 0.95),
+                                0.0),
+                    [](auto& c) -> auto& { return c.render.sss.pointShare; }));
 
   // --- Subsurface light propagation volumes (issue 8; Borlum et al. 2011, docs/sslpv.md) ------------
   r.add(bind<int>(withDefault(declare("sslpv.grid", "int", "cells per axis",

@@ -34,7 +34,7 @@ TALLOW_FN uint sssPcgHash(uint v) {
 // level, so two tuples that differ in any coordinate give unrelated values.
 //   x, y: texel of the scattered-radiosity map; map: its index k; frame: the accumulated-frame
 //   counter F; band: colour band c (each band has its own sample positions, §3.1); sampleIndex: j;
-//   dim: which number of the sample (0: ξ1 for r, 1: ξ2 for α).
+//   dim: which number of the sample (0: ξ1 for r, 1: ξ2 for α, 2: a point light's pick of density).
 TALLOW_FN uint sssRandomBits(uint x, uint y, uint map, uint frame, uint band, uint sampleIndex, uint dim) {
   uint h = sssPcgHash(dim);
   h = sssPcgHash(sampleIndex + h);
@@ -116,6 +116,61 @@ TALLOW_FN SssSample sssDrawSample(real3 xo, real3 t1, real3 t2, real sigmaTr, ui
   s.alpha = rs.alpha;
   s.weight = rs.weight;
   s.xj = sssPlanarSamplePoint(xo, t1, t2, rs.r, rs.alpha);
+  return s;
+}
+
+// --- Point lights: a second distance density and their mixture (issue 17) ---------------------
+// Eq. 12's exponential puts almost no samples where a point light inside the object lights x_o from
+// afar (the candle's lower wall, lit by the cup's inside 3–5 cm away: σ_tr r > 7 holds 95% of the
+// second moment and 0.09% of the samples), and ξ's 24 bits cut it at r = 16.6/σ_tr. The second
+// density is the stereographic image of uniform directions about the light: x_j on x_o's tangent
+// plane whose inverse stereographic projection from the antipode (Eqs. 13–14) is uniform on the
+// sphere of radius R = |x_ℓ − x_o| about x_ℓ. Per unit area of the plane (the plane normal to
+// x_ℓ − x_o, where the conformal factor is exact)
+//   p₂(r) = (1 + r²/4R²)⁻² / (4πR²),   ∫ p₂ dA = ∫₀^∞ (1 + u)⁻² du = 1   (u = r²/4R²),
+// with the cumulative F(r) = u/(1 + u), so r = 2R √(ξ/(1 − ξ)) draws it. Per (r, α), as Eq. 11 is
+// written: p₂(r, α) = r p₂(r). Each sample picks the stereographic density with probability `share`,
+// otherwise Eq. 12, and is weighted by the mixture (the balance heuristic of Veach and Guibas 1995,
+// one-sample MIS): weight = r/((1 − share) p(r, α) + share p₂(r, α)). The mixture is positive at
+// every r > 0 when share > 0, so no distance is cut off: the bias of Eq. 12's truncation goes.
+
+// p₂(r, α) = r (1 + r²/4R²)⁻²/(4πR²) [per mm per radian], R > 0.
+TALLOW_FN real sssStereoRadialPdf(real r, real radius) {
+  real q = real(1) + r * r / (real(4) * radius * radius);
+  return r / (real(2) * SSS_TWO_PI * radius * radius * q * q);
+}
+
+// r of p₂ from ξ ∈ [0, 1): 2R √(ξ/(1 − ξ)) (finite: 1 − ξ ≥ 2⁻²⁴).
+TALLOW_FN real sssSampleStereoRadius(real xi, real radius) {
+  return real(2) * radius * sqrt(xi / (real(1) - xi));
+}
+
+// The mixture weight r/p_mix(r, α) [mm²] of a distance r drawn from (1 − share)·Eq. 12 + share·p₂.
+TALLOW_FN real sssMixtureWeight(real r, real sigmaTr, real radius, real share) {
+  real p = (real(1) - share) * sssRadialPdf(r, sigmaTr);
+  if (share > real(0)) p = p + share * sssStereoRadialPdf(r, radius);
+  return p > real(0) ? r / p : real(0);
+}
+
+// One sample (index j of N = sampleCount) of the mixture for a point light at distance R = radius
+// from x_o; dimensions 0 and 1 give r and α as in sssDrawSample. The density is picked by
+// fract(ξ₀ + j/N) < share, with one ξ₀ per texel, frame and band (dimension 2 of sample 0): each
+// pick is uniform on [0, 1), so every sample is a one-sample MIS estimate, and together the N picks
+// are stratified, so ⌊share·N⌋ or ⌈share·N⌉ of them use p₂ — no variance from how many do (an
+// independent pick per sample adds up to (1/(1 − share) − 1) B² to a pixel's variance).
+// share ≤ 0 or R ≤ 0 is Eq. 12 alone (sssDrawSample, bit for bit).
+TALLOW_FN SssSample sssDrawMixtureSample(real3 xo, real3 t1, real3 t2, real sigmaTr, real radius, real share, uint x,
+                                         uint y, uint map, uint frame, uint band, uint sampleIndex, uint sampleCount) {
+  if (!(share > real(0)) || !(radius > real(0)))
+    return sssDrawSample(xo, t1, t2, sigmaTr, x, y, map, frame, band, sampleIndex);
+  real xi1 = sssRandom(x, y, map, frame, band, sampleIndex, 0u);
+  real xi2 = sssRandom(x, y, map, frame, band, sampleIndex, 1u);
+  real pick = fract(sssRandom(x, y, map, frame, band, 0u, 2u) + real(sampleIndex) / real(max(sampleCount, 1u)));
+  SssSample s;
+  s.r = pick < share ? sssSampleStereoRadius(xi1, radius) : -log(real(1) - xi1) / sigmaTr;
+  s.alpha = SSS_TWO_PI * xi2;
+  s.weight = sssMixtureWeight(s.r, sigmaTr, radius, share);
+  s.xj = sssPlanarSamplePoint(xo, t1, t2, s.r, s.alpha);
   return s;
 }
 

@@ -18,6 +18,7 @@ uniform int uFrame;                     // frame index of this accumulation (see
 uniform int uStereographic;             // 1: Eqs. 13–14 for point lights
 uniform int uProjectedArea;             // 1: the sampling plane's area against the surface's (sss.projected_area)
 uniform int uTexelPlane;                // 1: x_i on the G-buffer texel's tangent plane (sss.texel_plane)
+uniform float uPointShare;              // point lights: the stereographic density's share (sss.point_share)
 
 const float MM_PER_M = 1000.0;
 
@@ -61,7 +62,11 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
       vec3 t2 = cross(no, t1);
       float acc = 0.0;
       for (int j = 0; j < uSamples; ++j) {
-        SssSample s = sssDrawSample(xo, t1, t2, sigmaTr, texel.x, texel.y, uint(map), uint(uFrame), uint(c), uint(j));
+        // Eq. 12 mixed with the stereographic density about the light (sss.point_share, issue 17);
+        // Eq. 12 alone for the paper's Eq. 9 (no area ratio), whose integrand over the plane grows
+        // with r where the stereographic look-up crowds far samples onto the sphere.
+        SssSample s = sssDrawMixtureSample(xo, t1, t2, sigmaTr, length(xl - xo), uProjectedArea != 0 ? uPointShare : 0.0,
+                                           texel.x, texel.y, uint(map), uint(uFrame), uint(c), uint(j), uint(uSamples));
         vec3 dir = uStereographic != 0 ? sssStereographicLookupDirection(xo, s.xj, xl) : sssPlanarLookupDirection(s.xj, xl);
         GSample g = pointGBuffer(l, dir);
         if (g.tag != slot + 1) continue;

@@ -17,7 +17,7 @@ int countLights(const Scene& scene, LightKind kind) {
 /// camera pass both run it.
 std::vector<std::string> gatherReads() {
   return {resource::kLightGBuffers, "scene.light_placement", "scene.light_intensity", "scene.materials", "sss.model",
-          "sss.samples", "sss.stereographic", "sss.projected_area", "sss.texel_plane"};
+          "sss.samples", "sss.stereographic", "sss.point_share", "sss.projected_area", "sss.texel_plane"};
 }
 
 void append(std::vector<std::string>& to, const std::vector<std::string>& from) {

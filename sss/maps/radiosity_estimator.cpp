@@ -138,6 +138,32 @@ double stereographicAreaRatio(const glm::dvec3& xo, const glm::dvec3& no, const 
   return estimator_f64::sssStereographicAreaRatio(xo, no, xj, xl, xi, ni);
 }
 
+double stereoRadialPdf(double r, double radius) { return estimator_f64::sssStereoRadialPdf(r, radius); }
+double sampleStereoRadius(double xi, double radius) { return estimator_f64::sssSampleStereoRadius(xi, radius); }
+double mixtureWeight(double r, double sigmaTr, double radius, double share) {
+  return estimator_f64::sssMixtureWeight(r, sigmaTr, radius, share);
+}
+
+template <class Real>
+PlanarSample drawMixtureSample(const glm::dvec3& xo, const glm::dvec3& t1, const glm::dvec3& t2, double sigmaTr,
+                               double radius, double share, const RandomStreamId& id, std::uint32_t sampleCount) {
+  const auto draw = [&](auto ns, auto vec) {
+    using V = decltype(vec);
+    using R = typename V::value_type;
+    const auto s = ns(V(xo), V(t1), V(t2), R(sigmaTr), R(radius), R(share), id.x, id.y, id.map, id.frame, id.band,
+                      id.sample, sampleCount);
+    return PlanarSample{glm::dvec3(s.xj), double(s.r), double(s.alpha), double(s.weight)};
+  };
+  if constexpr (std::is_same_v<Real, float>)
+    return draw([](auto&&... a) { return estimator_f32::sssDrawMixtureSample(a...); }, glm::vec3());
+  else
+    return draw([](auto&&... a) { return estimator_f64::sssDrawMixtureSample(a...); }, glm::dvec3());
+}
+template PlanarSample drawMixtureSample<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double, double,
+                                               double, const RandomStreamId&, std::uint32_t);
+template PlanarSample drawMixtureSample<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double,
+                                                double, double, const RandomStreamId&, std::uint32_t);
+
 double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta) {
   return estimator_f64::sssSamplingSigmaTr(estimator_f64::bssrdfCoefficients(sigma_a, sigma_s, g, eta));
 }

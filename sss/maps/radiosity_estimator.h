@@ -16,7 +16,8 @@
 namespace tallow::sss {
 
 /// The random stream of one number: texel (x, y) of map k, accumulated frame F, colour band c,
-/// sample j, and which number of the sample (dim 0: ξ1 for r, 1: ξ2 for α).
+/// sample j, and which number of the sample (dim 0: ξ1 for r, 1: ξ2 for α, 2: a point light's pick
+/// of density).
 struct RandomStreamId {
   std::uint32_t x = 0, y = 0, map = 0, frame = 0, band = 0, sample = 0, dim = 0;
 };
@@ -71,6 +72,31 @@ extern template glm::dvec3 pointOnTexel<double>(const glm::dvec3&, const glm::dv
 /// The rate of the exponential distance distribution (Eq. 12) of one band [mm⁻¹]: σ_tr (Eq. 10),
 /// bounded below by 10⁻³ σ_t' and 10⁻⁶ mm⁻¹ so that σ_a = 0 samples finite distances.
 double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta);
+
+/// Point lights' second distance density (issue 17; shaders/maps/estimator.glsl): the stereographic
+/// image of uniform directions about a light at distance R = radius [mm] from x_o, per (r, α) as
+/// Eq. 11 is written: p₂(r, α) = r (1 + r²/4R²)⁻²/(4πR²).
+double stereoRadialPdf(double r, double radius);
+/// r of p₂ from ξ ∈ [0, 1): 2R √(ξ/(1 − ξ)).
+double sampleStereoRadius(double xi, double radius);
+/// r/p_mix(r, α) [mm²] for the mixture (1 − share)·Eq. 12 + share·p₂ (the balance heuristic).
+double mixtureWeight(double r, double sigmaTr, double radius, double share);
+
+/// Sample `stream.sample` of `sampleCount` on x_o's tangent plane (orthonormal t1, t2) as the
+/// point-light gather draws it: from the mixture above with stream (texelX, texelY, map, frame,
+/// band, sample) — the density picked by fract(ξ₀ + sample/sampleCount) < share, ξ₀ from dimension 2
+/// of sample 0 — or Eq. 12 alone when share ≤ 0 or radius ≤ 0.
+struct PlanarSample {
+  glm::dvec3 xj{0.0};
+  double r = 0.0, alpha = 0.0, weight = 0.0;  ///< weight = r/p(r, α) [mm²]
+};
+template <class Real>
+PlanarSample drawMixtureSample(const glm::dvec3& xo, const glm::dvec3& t1, const glm::dvec3& t2, double sigmaTr,
+                               double radius, double share, const RandomStreamId& stream, std::uint32_t sampleCount);
+extern template PlanarSample drawMixtureSample<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double,
+                                                      double, double, const RandomStreamId&, std::uint32_t);
+extern template PlanarSample drawMixtureSample<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                       double, double, double, const RandomStreamId&, std::uint32_t);
 
 /// Optical properties per colour band (r, g, b) [mm⁻¹] and the relative index of refraction.
 struct RadiosityMaterial {

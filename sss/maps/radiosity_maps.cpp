@@ -398,6 +398,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
   p.set("uStereographic", s.stereographic ? 1 : 0);
   p.set("uProjectedArea", s.projectedArea ? 1 : 0);
   p.set("uTexelPlane", s.texelPlane ? 1 : 0);
+  p.set("uPointShare", s.pointShare);
 }
 
 void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings& settings, GLuint mapsUnit,
