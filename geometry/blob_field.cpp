@@ -9,10 +9,8 @@
 // Φ_t and its gradient: the lines the GPU evaluates (shaders/fields/blob.glsl), compiled here in
 // double, the precision the CPU mesher, `tallow field` and the reference integrator have always used.
 namespace tallow::geometry::blob_f64 {
-using namespace glm;
 using real = double;
-using real2 = glm::dvec2;
-using real3 = glm::dvec3;
+#include "gpu/glsl_real_types.inc"
 #include "shaders/fields/blob.glsl"
 }  // namespace tallow::geometry::blob_f64
 

@@ -13,22 +13,18 @@ static_assert(sizeof(unsigned) == 4, "GLSL uint literals (123u) must be 32-bit u
 // The shared files once with the counting scalar and once in plain float, as sss/maps/
 // radiosity_estimator.cpp compiles them: the plain one checks that counting changed no value.
 namespace tallow::flops::counted {
-using namespace glm;
 using uint = std::uint32_t;
 using real = CountedReal;
-using real2 = glm::vec<2, CountedReal>;
-using real3 = glm::vec<3, CountedReal>;
+#include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
 #include "app/bench_report/gather_sample.inc"
 }  // namespace tallow::flops::counted
 
 namespace tallow::flops::plain {
-using namespace glm;
 using uint = std::uint32_t;
 using real = float;
-using real2 = glm::vec2;
-using real3 = glm::vec3;
+#include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
 #include "app/bench_report/gather_sample.inc"

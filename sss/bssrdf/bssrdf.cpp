@@ -12,18 +12,14 @@
 // The shared model files, compiled once per precision. Each namespace supplies the types that
 // shaders/bssrdf/real.glsl defines as macros in GLSL, then includes every file in dependency order.
 namespace tallow::sss::shared_f32 {
-using namespace glm;
 using real = float;
-using real2 = glm::vec2;
-using real3 = glm::vec3;
+#include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 }  // namespace tallow::sss::shared_f32
 
 namespace tallow::sss::shared_f64 {
-using namespace glm;
 using real = double;
-using real2 = glm::dvec2;
-using real3 = glm::dvec3;
+#include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 }  // namespace tallow::sss::shared_f64
 

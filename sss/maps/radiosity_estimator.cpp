@@ -13,21 +13,17 @@
 static_assert(sizeof(unsigned) == 4, "GLSL uint literals (123u) must be 32-bit unsigned int in C++");
 
 namespace tallow::sss::estimator_f32 {
-using namespace glm;
 using uint = std::uint32_t;
 using real = float;
-using real2 = glm::vec2;
-using real3 = glm::vec3;
+#include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
 }  // namespace tallow::sss::estimator_f32
 
 namespace tallow::sss::estimator_f64 {
-using namespace glm;
 using uint = std::uint32_t;
 using real = double;
-using real2 = glm::dvec2;
-using real3 = glm::dvec3;
+#include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
 }  // namespace tallow::sss::estimator_f64
