@@ -233,6 +233,7 @@ TEST(RadiosityEstimator, MissesAndBackFacingHitsContributeNothing) {
 
 TEST(RadiosityEstimator, SamplesPlanarPointsInTheGivenBasisWithTheBandsOwnSigmaTr) {
   ScatteredRadiosityInput in = slabInput(fromTable("Ketchup"), BssrdfModel::Standard, 4000);
+  in.bandSampling = BandSampling::PerBand;
   in.xo = {1.0, 2.0, 3.0};
   in.t1 = glm::normalize(glm::dvec3(1.0, 1.0, 0.0));
   in.t2 = glm::dvec3(0.0, 0.0, 1.0);
@@ -469,11 +470,14 @@ TEST(StereoDensity, SampledDistancesFollowItsPdf) {
   EXPECT_LT(chi2, 43.82);  // χ² with 19 degrees of freedom at p = 0.001
 }
 
-TEST(MixtureSampling, WithoutTheSecondDensityTheWeightIsEq12s) {
-  // r/p(r, α) with Eq. 11's p = σ_tr e^{−σ_tr r}/(2π), computed here.
-  for (const double r : {0.0, 0.3, 4.0, 11.0})
-    EXPECT_NEAR(mixtureWeight(r, 0.8, 5.0, 0.0), r * 2.0 * kPi / (0.8 * std::exp(-0.8 * r)),
-                1e-12 * (1.0 + r * 2.0 * kPi / (0.8 * std::exp(-0.8 * r))));
+TEST(MixtureSampling, WithoutTheSecondDensityAndOneRateItIsEq11) {
+  // Eq. 11's p(r, α) = σ_tr e^{−σ_tr r}/(2π), computed here; three equal rates average to it.
+  for (const double r : {0.0, 0.3, 4.0, 11.0}) {
+    const double eq11 = 0.8 * std::exp(-0.8 * r) / (2.0 * kPi);
+    EXPECT_NEAR(bandMixturePdf(r, glm::dvec3(0.8), 5.0, 0.0), eq11, 1e-12 * eq11) << r;
+    const double mixed = (eq11 + 0.2 * std::exp(-0.2 * r) / (2.0 * kPi) + 3.0 * std::exp(-3.0 * r) / (2.0 * kPi)) / 3.0;
+    EXPECT_NEAR(bandMixturePdf(r, {0.8, 0.2, 3.0}, 5.0, 0.0), mixed, 1e-12 * mixed) << r;
+  }
 }
 
 TEST(MixtureSampling, UnbiasedForAFarReachingIntegrandWhereEq12AloneIsNot) {
@@ -487,7 +491,7 @@ TEST(MixtureSampling, UnbiasedForAFarReachingIntegrandWhereEq12AloneIsNot) {
     double sum = 0.0, sumSquares = 0.0;
     for (int j = 0; j < kSamples; ++j) {
       const RandomStreamId id{static_cast<std::uint32_t>(j % 256), static_cast<std::uint32_t>(j / 256), 1, 2, 0, 0, 0};
-      const PlanarSample s = drawMixtureSample<double>(xo, t1, t2, sigmaTr, radius, share, id, 1u);
+      const PlanarSample s = drawSharedSample<double>(xo, t1, t2, glm::dvec3(sigmaTr), radius, share, id, 1u);
       EXPECT_NEAR(glm::length(s.xj - xo), s.r, 1e-9 * (1.0 + s.r));
       const double q = 1.0 + s.r * s.r / (L * L);
       const double v = s.weight / (q * q);
@@ -513,11 +517,104 @@ TEST(MixtureSampling, FloatAndDoubleDrawTheSameDistances) {
   const glm::dvec3 xo(0.0), t1(1.0, 0.0, 0.0), t2(0.0, 0.0, 1.0);
   for (std::uint32_t j = 0; j < 2000; ++j) {
     const RandomStreamId id{j, 5, 0, 1, 2, j % 7, 0};
-    const PlanarSample f = drawMixtureSample<float>(xo, t1, t2, 0.6, 12.0, 0.25, id, 7u);
-    const PlanarSample d = drawMixtureSample<double>(xo, t1, t2, 0.6, 12.0, 0.25, id, 7u);
+    const PlanarSample f = drawSharedSample<float>(xo, t1, t2, {0.6, 0.1, 2.5}, 12.0, 0.25, id, 7u);
+    const PlanarSample d = drawSharedSample<double>(xo, t1, t2, {0.6, 0.1, 2.5}, 12.0, 0.25, id, 7u);
     EXPECT_NEAR(f.r, d.r, 1e-5 * (1.0 + d.r)) << j;
     EXPECT_NEAR(f.weight, d.weight, 1e-4 * (1.0 + d.weight)) << j;
   }
+}
+
+// --- One sample pattern for the three bands (issue 17) -------------------------------------------
+
+/// ∫ over α and r ∈ [r(t0), r(t1)] of p_mix(r, α), through t = r/(r + R) as stereoMass.
+double mixtureMass(double t0, double t1, const glm::dvec3& sigmaTr, double radius, double share) {
+  return simpson([&](double t) {
+    if (t >= 1.0) return 0.0;
+    const double r = radius * t / (1.0 - t);
+    return 2.0 * kPi * bandMixturePdf(r, sigmaTr, radius, share) * radius / ((1.0 - t) * (1.0 - t));
+  }, t0, t1, 4000);
+}
+
+TEST(SharedSampling, MixtureIntegratesToOne) {
+  for (const double share : {0.0, 0.3, 0.9})
+    EXPECT_NEAR(mixtureMass(0.0, 1.0, {0.8, 0.2, 3.0}, 5.0, share), 1.0, 1e-6) << share;
+}
+
+TEST(SharedSampling, DrawnDistancesFollowTheMixturePdf) {
+  // 20 bins of equal width in t = r/(r + R), expected counts by quadrature of p_mix, observed ones
+  // drawn as the gather draws them (5 samples per texel: the picks stratified within a texel).
+  constexpr int kBins = 20, kSamples = 200000, kPerTexel = 5;
+  const glm::dvec3 sigmaTr(0.8, 0.2, 3.0);
+  const glm::dvec3 xo(0.0), t1(1.0, 0.0, 0.0), t2(0.0, 1.0, 0.0);
+  for (const double share : {0.0, 0.3}) {
+    const double radius = 4.0;
+    std::vector<int> counts(kBins, 0);
+    for (int i = 0; i < kSamples; ++i) {
+      const int texel = i / kPerTexel;
+      const RandomStreamId id{static_cast<std::uint32_t>(texel % 400), static_cast<std::uint32_t>(texel / 400), 2, 9,
+                              0, static_cast<std::uint32_t>(i % kPerTexel), 0};
+      const double r = drawSharedSample<double>(xo, t1, t2, sigmaTr, radius, share, id, kPerTexel).r;
+      ++counts[std::min(kBins - 1, static_cast<int>(r / (r + radius) * kBins))];
+    }
+    double chi2 = 0.0;
+    for (int b = 0; b < kBins; ++b) {
+      const double expected = kSamples * mixtureMass(double(b) / kBins, double(b + 1) / kBins, sigmaTr, radius, share);
+      chi2 += (counts[b] - expected) * (counts[b] - expected) / expected;
+    }
+    EXPECT_LT(chi2, 43.82) << share;  // χ² with 19 degrees of freedom at p = 0.001
+  }
+}
+
+/// Pearson's correlation of the errors of bands a and b over estimates at `texels` texels.
+double bandErrorCorrelation(ScatteredRadiosityInput in, int texels, int a, int b) {
+  std::vector<glm::dvec3> values;
+  glm::dvec3 mean(0.0);
+  for (int t = 0; t < texels; ++t) {
+    in.texelX = static_cast<std::uint32_t>(t);
+    values.push_back(estimateScatteredRadiosity<double>(in, planeLookup).B);
+    mean += values.back() / double(texels);
+  }
+  double sab = 0.0, saa = 0.0, sbb = 0.0;
+  for (const glm::dvec3& v : values) {
+    const glm::dvec3 e = v - mean;
+    sab += e[a] * e[b], saa += e[a] * e[a], sbb += e[b] * e[b];
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+TEST(SharedSampling, TheBandsErrorsAreCorrelatedGreyNoise) {
+  // Per band (§3.1) each band's error comes from its own random stream: uncorrelated (|ρ| within
+  // 3/√texels of 0). Shared, every band sees the same x_j: positively correlated errors, which a
+  // pixel shows as a change of brightness rather than of hue.
+  constexpr int kTexels = 600;
+  ScatteredRadiosityInput in = slabInput(fromTable("Marble"), BssrdfModel::Directional, 4);
+  for (const auto [a, b] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{0, 2}}) {
+    in.bandSampling = BandSampling::PerBand;
+    const double perBand = bandErrorCorrelation(in, kTexels, a, b);
+    in.bandSampling = BandSampling::Shared;
+    const double shared = bandErrorCorrelation(in, kTexels, a, b);
+    std::printf("[ bands ] Marble, N = 4: ρ(%d, %d) per band %+.3f, shared %+.3f\n", a, b, perBand, shared);
+    EXPECT_LT(std::abs(perBand), 3.0 / std::sqrt(double(kTexels))) << a << b;
+    EXPECT_GT(shared, 0.5) << a << b;
+  }
+}
+
+TEST(SharedSampling, DistancesComeFromTheMixtureOfTheBandsRates) {
+  ScatteredRadiosityInput in = slabInput(fromTable("Ketchup"), BssrdfModel::Standard, 3000);
+  std::vector<double> radii;
+  const auto record = [&](const glm::dvec3& xj) -> std::optional<LightGBufferHit> {
+    radii.push_back(glm::length(xj - in.xo));
+    return std::nullopt;
+  };
+  estimateScatteredRadiosity<double>(in, record);
+  ASSERT_EQ(radii.size(), 3000u);  // one look-up per sample for the three bands
+  // The picks are stratified, so exactly 1000 samples come from each band's Eq. 12: the mean is the
+  // average of the bands' means 1/σ_tr, within 4 standard errors.
+  double expected = 0.0, mean = 0.0, meanSquare = 0.0;
+  for (int c = 0; c < 3; ++c)
+    expected += 1.0 / samplingSigmaTr(in.material.sigma_a[c], in.material.sigma_s[c], 0.0, 1.3) / 3.0;
+  for (const double r : radii) mean += r / 3000.0, meanSquare += r * r / 3000.0;
+  EXPECT_NEAR(mean, expected, 4.0 * std::sqrt((meanSquare - mean * mean) / 3000.0));
 }
 
 TEST(StereographicLookup, ZeroOffsetLooksUpAlongXoMinusXl) {

@@ -360,8 +360,9 @@ json buildReport(const fs::path& runs, const flops::GatherFlops& flops, const js
 
   json counted = {{"samples", flops.samples},
                   {"flops_mean", flops.flopsMean},
-                  {"flops_min", flops.flopsMin},
-                  {"flops_max", flops.flopsMax},
+                  {"flops_per_shared_sample", flops.flopsPerSharedSample},
+                  {"flops_shared_min", flops.flopsSharedMin},
+                  {"flops_shared_max", flops.flopsSharedMax},
                   {"add", flops.addMean},
                   {"mul", flops.mulMean},
                   {"div", flops.divMean},

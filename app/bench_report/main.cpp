@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
                                           {"model", "directional"},
                                           {"samples", flops.samples},
                                           {"flops_mean", flops.flopsMean},
-                                          {"flops_min", flops.flopsMin},
-                                          {"flops_max", flops.flopsMax},
+                                          {"flops_per_shared_sample", flops.flopsPerSharedSample},
+                                          {"flops_shared_min", flops.flopsSharedMin},
+                                          {"flops_shared_max", flops.flopsSharedMax},
                                           {"max_difference_to_float", flops.maxValueDifference}})
                               .dump(2)
                               .c_str());

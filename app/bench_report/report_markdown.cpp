@@ -181,13 +181,15 @@ std::string renderMarkdown(const json& r) {
   // --- Gather, dual contouring, occupancy ---------------------------------------------------------
   md << "## The gather's arithmetic\n\n";
   const json& c = r["gather_flops"];
-  md << "Per sample and band, the lines gather.glsl runs for a sample that reaches S_d (sssDrawSample, "
-        "sssPointOnTexel, sssRadiosityTerm with the directional dipole), run in C++ with a scalar that counts "
-        "each operation (app/bench_report/counted_real.h): "
-     << fmt(c["add"], 1) << " add/sub, " << fmt(c["mul"], 1) << " mul, " << fmt(c["div"], 1) << " div, " << fmt(c["special"], 1)
-     << " special functions (exp, log, sqrt, sin, cos) = **" << fmt(c["flops_mean"], 1) << " FLOPs** (min "
-     << c["flops_min"].get<long long>() << ", max " << c["flops_max"].get<long long>() << " over " << c["samples"].get<int>()
-     << " samples; " << fmt(c["other_not_flops"], 1) << " comparisons, min/max/abs not counted). The gather's "
+  md << "Per sample, the lines gather.glsl runs for a sample that reaches S_d, drawn once for the three "
+        "colour bands (sssDrawSharedSample, sssPointOnTexel, then sssRadiosityTerm with the directional dipole "
+        "per band), run in C++ with a scalar that counts each operation (app/bench_report/counted_real.h): **"
+     << fmt(c["flops_per_shared_sample"], 1) << " FLOPs** for the three bands (min "
+     << c["flops_shared_min"].get<long long>() << ", max " << c["flops_shared_max"].get<long long>() << " over "
+     << c["samples"].get<int>() << " samples), that is per sample and band " << fmt(c["add"], 1) << " add/sub, "
+     << fmt(c["mul"], 1) << " mul, " << fmt(c["div"], 1) << " div, " << fmt(c["special"], 1)
+     << " special functions (exp, log, sqrt, sin, cos) = **" << fmt(c["flops_mean"], 1) << " FLOPs** ("
+     << fmt(c["other_not_flops"], 1) << " comparisons, min/max/abs not counted). The gather's "
         "own glue (G-buffer look-up, normalising its normal, the projected-area division) is not counted, "
         "and `probe maps` counts every sample as an evaluation, samples that miss the object included: the "
         "rate below is FLOPs of full samples × all samples, an upper bound of the arithmetic done.\n\n";

@@ -33,7 +33,8 @@ TALLOW_FN uint sssPcgHash(uint v) {
 // construction of multidimensional inputs from a 1D hash). Each coordinate enters through its own
 // level, so two tuples that differ in any coordinate give unrelated values.
 //   x, y: texel of the scattered-radiosity map; map: its index k; frame: the accumulated-frame
-//   counter F; band: colour band c (each band has its own sample positions, §3.1); sampleIndex: j;
+//   counter F; band: colour band c (§3.1: each band its own sample positions), or SSS_SHARED_BAND
+//   for the pattern the three bands share (sssDrawSharedSample); sampleIndex: j;
 //   dim: which number of the sample (0: ξ1 for r, 1: ξ2 for α, 2: a point light's pick of density).
 TALLOW_FN uint sssRandomBits(uint x, uint y, uint map, uint frame, uint band, uint sampleIndex, uint dim) {
   uint h = sssPcgHash(dim);
@@ -131,8 +132,9 @@ TALLOW_FN SssSample sssDrawSample(real3 xo, real3 t1, real3 t2, real sigmaTr, ui
 // with the cumulative F(r) = u/(1 + u), so r = 2R √(ξ/(1 − ξ)) draws it. Per (r, α), as Eq. 11 is
 // written: p₂(r, α) = r p₂(r). Each sample picks the stereographic density with probability `share`,
 // otherwise Eq. 12, and is weighted by the mixture (the balance heuristic of Veach and Guibas 1995,
-// one-sample MIS): weight = r/((1 − share) p(r, α) + share p₂(r, α)). The mixture is positive at
-// every r > 0 when share > 0, so no distance is cut off: the bias of Eq. 12's truncation goes.
+// one-sample MIS): weight = r/((1 − share) p(r, α) + share p₂(r, α)) (sssDrawSharedSample below). The
+// mixture is positive at every r > 0 when share > 0, so no distance is cut off: the bias of Eq. 12's
+// truncation goes.
 
 // p₂(r, α) = r (1 + r²/4R²)⁻²/(4πR²) [per mm per radian], R > 0.
 TALLOW_FN real sssStereoRadialPdf(real r, real radius) {
@@ -145,31 +147,50 @@ TALLOW_FN real sssSampleStereoRadius(real xi, real radius) {
   return real(2) * radius * sqrt(xi / (real(1) - xi));
 }
 
-// The mixture weight r/p_mix(r, α) [mm²] of a distance r drawn from (1 − share)·Eq. 12 + share·p₂.
-TALLOW_FN real sssMixtureWeight(real r, real sigmaTr, real radius, real share) {
-  real p = (real(1) - share) * sssRadialPdf(r, sigmaTr);
+// --- One sample pattern for the three colour bands (issue 17) -------------------------------
+// §3.1 draws each band's samples from its own σ_tr, so a rare sample that reaches a bright x_i lands
+// in one band only: coloured speckles, and three G-buffer look-ups, x_i and area ratios per sample.
+// Instead each sample's r is drawn once from the mixture of the three bands' Eq. 12 densities (and,
+// for a point light, p₂ with probability `share`),
+//   p_mix(r, α) = (1 − share)·(p_r + p_g + p_b)/3 + share·p₂,
+// and every band is weighted by r/p_mix (the balance heuristic over the four techniques, Veach and
+// Guibas 1995): unbiased for each band since p_mix > 0 wherever that band's Eq. 12 is, and at most
+// 3/(1 − share) times that band's own weight r/p_c. The bands then share x_j, the look-up, x_i, n_i
+// and the area ratio, and their errors are correlated: grey noise instead of colour noise.
+// The random stream's band coordinate is SSS_SHARED_BAND for these samples.
+const uint SSS_SHARED_BAND = 3u;
+
+// p_mix(r, α) [per mm per radian] for the rates σ_tr of the three bands (all > 0).
+TALLOW_FN real sssBandMixturePdf(real r, real3 sigmaTr, real radius, real share) {
+  real p = (real(1) - share) *
+           ((sssRadialPdf(r, sigmaTr.x) + sssRadialPdf(r, sigmaTr.y)) + sssRadialPdf(r, sigmaTr.z)) / real(3);
   if (share > real(0)) p = p + share * sssStereoRadialPdf(r, radius);
-  return p > real(0) ? r / p : real(0);
+  return p;
 }
 
-// One sample (index j of N = sampleCount) of the mixture for a point light at distance R = radius
-// from x_o; dimensions 0 and 1 give r and α as in sssDrawSample. The density is picked by
-// fract(ξ₀ + j/N) < share, with one ξ₀ per texel, frame and band (dimension 2 of sample 0): each
-// pick is uniform on [0, 1), so every sample is a one-sample MIS estimate, and together the N picks
-// are stratified, so ⌊share·N⌋ or ⌈share·N⌉ of them use p₂ — no variance from how many do (an
-// independent pick per sample adds up to (1/(1 − share) − 1) B² to a pixel's variance).
-// share ≤ 0 or R ≤ 0 is Eq. 12 alone (sssDrawSample, bit for bit).
-TALLOW_FN SssSample sssDrawMixtureSample(real3 xo, real3 t1, real3 t2, real sigmaTr, real radius, real share, uint x,
-                                         uint y, uint map, uint frame, uint band, uint sampleIndex, uint sampleCount) {
-  if (!(share > real(0)) || !(radius > real(0)))
-    return sssDrawSample(xo, t1, t2, sigmaTr, x, y, map, frame, band, sampleIndex);
-  real xi1 = sssRandom(x, y, map, frame, band, sampleIndex, 0u);
-  real xi2 = sssRandom(x, y, map, frame, band, sampleIndex, 1u);
-  real pick = fract(sssRandom(x, y, map, frame, band, 0u, 2u) + real(sampleIndex) / real(max(sampleCount, 1u)));
+// Sample j of N = sampleCount of the shared pattern: the technique picked by fract(ξ₀ + j/N), with
+// one ξ₀ per texel and frame (dimension 2 of sample 0): p₂ below `share` (point lights with
+// R = radius > 0 only; pass share = 0 for directional lights), else the Eq. 12 of band
+// ⌊3 (pick − share)/(1 − share)⌋; r and α from dimensions 0 and 1; weight r/p_mix. Each pick is
+// uniform on [0, 1), so every sample is a one-sample MIS estimate, and together the N picks are
+// stratified: a technique of probability q gets ⌊N·q⌋ or ⌈N·q⌉ of them, no variance from how many.
+TALLOW_FN SssSample sssDrawSharedSample(real3 xo, real3 t1, real3 t2, real3 sigmaTr, real radius, real share, uint x,
+                                        uint y, uint map, uint frame, uint sampleIndex, uint sampleCount) {
+  real sh = (share > real(0) && radius > real(0)) ? share : real(0);
+  real xi1 = sssRandom(x, y, map, frame, SSS_SHARED_BAND, sampleIndex, 0u);
+  real xi2 = sssRandom(x, y, map, frame, SSS_SHARED_BAND, sampleIndex, 1u);
+  real pick = fract(sssRandom(x, y, map, frame, SSS_SHARED_BAND, 0u, 2u) + real(sampleIndex) / real(max(sampleCount, 1u)));
   SssSample s;
-  s.r = pick < share ? sssSampleStereoRadius(xi1, radius) : -log(real(1) - xi1) / sigmaTr;
+  if (pick < sh) {
+    s.r = sssSampleStereoRadius(xi1, radius);
+  } else {
+    real band = real(3) * (pick - sh) / (real(1) - sh);  // in [0, 3)
+    real rate = band < real(1) ? sigmaTr.x : (band < real(2) ? sigmaTr.y : sigmaTr.z);
+    s.r = -log(real(1) - xi1) / rate;
+  }
   s.alpha = SSS_TWO_PI * xi2;
-  s.weight = sssMixtureWeight(s.r, sigmaTr, radius, share);
+  real p = sssBandMixturePdf(s.r, sigmaTr, radius, sh);
+  s.weight = p > real(0) ? s.r / p : real(0);
   s.xj = sssPlanarSamplePoint(xo, t1, t2, s.r, s.alpha);
   return s;
 }

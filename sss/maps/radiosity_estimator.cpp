@@ -1,5 +1,6 @@
 #include "sss/maps/radiosity_estimator.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -42,12 +43,14 @@ struct Shared;
 template <>
 struct Shared<float> {
   using Vec = glm::vec3;
+  using Sample = estimator_f32::SssSample;
   template <class F>
   static decltype(auto) call(F&& f) {
     namespace s = estimator_f32;
     return f(s::BssrdfCoefficients{}, [](auto&&... a) { return s::bssrdfCoefficients(a...); },
              [](auto&&... a) { return s::sssSamplingSigmaTr(a...); },
              [](auto&&... a) { return s::sssDrawSample(a...); },
+             [](auto&&... a) { return s::sssDrawSharedSample(a...); },
              [](auto&&... a) { return s::sssRadiosityTerm(a...); },
              [](auto&&... a) { return s::sssRadiosityFromSum(a...); });
   }
@@ -55,12 +58,14 @@ struct Shared<float> {
 template <>
 struct Shared<double> {
   using Vec = glm::dvec3;
+  using Sample = estimator_f64::SssSample;
   template <class F>
   static decltype(auto) call(F&& f) {
     namespace s = estimator_f64;
     return f(s::BssrdfCoefficients{}, [](auto&&... a) { return s::bssrdfCoefficients(a...); },
              [](auto&&... a) { return s::sssSamplingSigmaTr(a...); },
              [](auto&&... a) { return s::sssDrawSample(a...); },
+             [](auto&&... a) { return s::sssDrawSharedSample(a...); },
              [](auto&&... a) { return s::sssRadiosityTerm(a...); },
              [](auto&&... a) { return s::sssRadiosityFromSum(a...); });
   }
@@ -136,29 +141,32 @@ double stereographicAreaRatio(const glm::dvec3& xo, const glm::dvec3& no, const 
 
 double stereoRadialPdf(double r, double radius) { return estimator_f64::sssStereoRadialPdf(r, radius); }
 double sampleStereoRadius(double xi, double radius) { return estimator_f64::sssSampleStereoRadius(xi, radius); }
-double mixtureWeight(double r, double sigmaTr, double radius, double share) {
-  return estimator_f64::sssMixtureWeight(r, sigmaTr, radius, share);
+double bandMixturePdf(double r, const glm::dvec3& sigmaTr, double radius, double share) {
+  return estimator_f64::sssBandMixturePdf(r, sigmaTr, radius, share);
 }
 
 template <class Real>
-PlanarSample drawMixtureSample(const glm::dvec3& xo, const glm::dvec3& t1, const glm::dvec3& t2, double sigmaTr,
-                               double radius, double share, const RandomStreamId& id, std::uint32_t sampleCount) {
+PlanarSample drawSharedSample(const glm::dvec3& xo, const glm::dvec3& t1, const glm::dvec3& t2,
+                              const glm::dvec3& sigmaTr, double radius, double share, const RandomStreamId& id,
+                              std::uint32_t sampleCount) {
   const auto draw = [&](auto ns, auto vec) {
     using V = decltype(vec);
     using R = typename V::value_type;
-    const auto s = ns(V(xo), V(t1), V(t2), R(sigmaTr), R(radius), R(share), id.x, id.y, id.map, id.frame, id.band,
-                      id.sample, sampleCount);
+    const auto s = ns(V(xo), V(t1), V(t2), V(sigmaTr), R(radius), R(share), id.x, id.y, id.map, id.frame, id.sample,
+                      sampleCount);
     return PlanarSample{glm::dvec3(s.xj), double(s.r), double(s.alpha), double(s.weight)};
   };
   if constexpr (std::is_same_v<Real, float>)
-    return draw([](auto&&... a) { return estimator_f32::sssDrawMixtureSample(a...); }, glm::vec3());
+    return draw([](auto&&... a) { return estimator_f32::sssDrawSharedSample(a...); }, glm::vec3());
   else
-    return draw([](auto&&... a) { return estimator_f64::sssDrawMixtureSample(a...); }, glm::dvec3());
+    return draw([](auto&&... a) { return estimator_f64::sssDrawSharedSample(a...); }, glm::dvec3());
 }
-template PlanarSample drawMixtureSample<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double, double,
-                                               double, const RandomStreamId&, std::uint32_t);
-template PlanarSample drawMixtureSample<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double,
-                                                double, double, const RandomStreamId&, std::uint32_t);
+template PlanarSample drawSharedSample<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                              const glm::dvec3&, double, double, const RandomStreamId&,
+                                              std::uint32_t);
+template PlanarSample drawSharedSample<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                               const glm::dvec3&, double, double, const RandomStreamId&,
+                                               std::uint32_t);
 
 double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta) {
   return estimator_f64::sssSamplingSigmaTr(estimator_f64::bssrdfCoefficients(sigma_a, sigma_s, g, eta));
@@ -175,28 +183,44 @@ ScatteredRadiosity estimateScatteredRadiosity(const ScatteredRadiosityInput& in,
     validateBssrdfConfig(check);
   }
   using Vec = typename Shared<Real>::Vec;
-  return Shared<Real>::call([&](auto, auto coefficients, auto samplingSigmaTr, auto drawSample, auto term,
-                                auto fromSum) {
+  return Shared<Real>::call([&](auto, auto coefficients, auto samplingSigmaTr, auto drawSample, auto drawShared,
+                                auto term, auto fromSum) {
     const Vec xo(in.xo), no(in.no), wl(in.toLight), t1(in.t1), t2(in.t2);
+    using K = decltype(coefficients(Real(0), Real(0), Real(0), Real(0)));
+    std::array<K, 3> k;
+    Vec sigmaTr;
+    for (int c = 0; c < 3; ++c) {
+      k[c] = coefficients(Real(m.sigma_a[c]), Real(m.sigma_s[c]), Real(m.g[c]), Real(m.eta));
+      sigmaTr[c] = samplingSigmaTr(k[c]);
+    }
+    glm::dvec3 sum(0.0), sumSquares(0.0);
+    const auto add = [&](int c, const typename Shared<Real>::Sample& s, const LightGBufferHit& hit) {
+      const double t = static_cast<double>(
+          term(static_cast<int>(in.model), Vec(hit.xi), Vec(hit.ni), wl, xo, no, k[c], s.weight));
+      sum[c] += t;
+      sumSquares[c] += t * t;
+    };
+    const auto n = static_cast<std::uint32_t>(in.samples);
+    if (in.bandSampling == BandSampling::Shared) {
+      for (std::uint32_t j = 0; j < n; ++j) {
+        // A directional light: no second density (share 0, radius 0).
+        const auto s = drawShared(xo, t1, t2, sigmaTr, Real(0), Real(0), in.texelX, in.texelY, in.map, in.frame, j, n);
+        if (const std::optional<LightGBufferHit> hit = lookup(glm::dvec3(s.xj)))
+          for (int c = 0; c < 3; ++c) add(c, s, *hit);
+      }
+    } else {
+      for (int c = 0; c < 3; ++c)
+        for (std::uint32_t j = 0; j < n; ++j) {
+          const auto s = drawSample(xo, t1, t2, sigmaTr[c], in.texelX, in.texelY, in.map, in.frame,
+                                    static_cast<std::uint32_t>(c), j);
+          if (const std::optional<LightGBufferHit> hit = lookup(glm::dvec3(s.xj))) add(c, s, *hit);
+        }
+    }
     ScatteredRadiosity out;
     for (int c = 0; c < 3; ++c) {
-      const auto k = coefficients(Real(m.sigma_a[c]), Real(m.sigma_s[c]), Real(m.g[c]), Real(m.eta));
-      const Real sigmaTr = samplingSigmaTr(k);
-      double sum = 0.0, sumSquares = 0.0;
-      for (int j = 0; j < in.samples; ++j) {
-        const auto s = drawSample(xo, t1, t2, sigmaTr, in.texelX, in.texelY, in.map, in.frame,
-                                  static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(j));
-        const std::optional<LightGBufferHit> hit = lookup(glm::dvec3(s.xj));
-        if (!hit) continue;
-        const double t = static_cast<double>(
-            term(static_cast<int>(in.model), Vec(hit->xi), Vec(hit->ni), wl, xo, no, k, s.weight));
-        sum += t;
-        sumSquares += t * t;
-      }
-      const double n = in.samples;
       const double scale = static_cast<double>(fromSum(Real(1), Real(in.irradiance[c]), 1));  // π E
-      out.B[c] = static_cast<double>(fromSum(Real(sum), Real(in.irradiance[c]), in.samples));
-      const double variance = n > 1 ? std::max(0.0, (sumSquares - sum * sum / n) / (n - 1)) : 0.0;
+      out.B[c] = static_cast<double>(fromSum(Real(sum[c]), Real(in.irradiance[c]), in.samples));
+      const double variance = n > 1 ? std::max(0.0, (sumSquares[c] - sum[c] * sum[c] / n) / (n - 1)) : 0.0;
       out.standardError[c] = scale * std::sqrt(variance / n);
     }
     return out;

@@ -16,8 +16,8 @@
 namespace tallow::sss {
 
 /// The random stream of one number: texel (x, y) of map k, accumulated frame F, colour band c,
-/// sample j, and which number of the sample (dim 0: ξ1 for r, 1: ξ2 for α, 2: a point light's pick
-/// of density).
+/// sample j, and which number of the sample (dim 0: ξ1 for r, 1: ξ2 for α, 2: the pick of density
+/// of the shared pattern).
 struct RandomStreamId {
   std::uint32_t x = 0, y = 0, map = 0, frame = 0, band = 0, sample = 0, dim = 0;
 };
@@ -79,24 +79,30 @@ double samplingSigmaTr(double sigma_a, double sigma_s, double g, double eta);
 double stereoRadialPdf(double r, double radius);
 /// r of p₂ from ξ ∈ [0, 1): 2R √(ξ/(1 − ξ)).
 double sampleStereoRadius(double xi, double radius);
-/// r/p_mix(r, α) [mm²] for the mixture (1 − share)·Eq. 12 + share·p₂ (the balance heuristic).
-double mixtureWeight(double r, double sigmaTr, double radius, double share);
+/// p_mix(r, α) [per mm per radian] of the sample pattern the three colour bands share (issue 17;
+/// shaders/maps/estimator.glsl): (1 − share)·(the bands' Eq. 11 at their rates sigmaTr, averaged) +
+/// share·p₂ about a light at distance radius. The weight of a drawn r is r/p_mix.
+double bandMixturePdf(double r, const glm::dvec3& sigmaTr, double radius, double share);
 
-/// Sample `stream.sample` of `sampleCount` on x_o's tangent plane (orthonormal t1, t2) as the
-/// point-light gather draws it: from the mixture above with stream (texelX, texelY, map, frame,
-/// band, sample) — the density picked by fract(ξ₀ + sample/sampleCount) < share, ξ₀ from dimension 2
-/// of sample 0 — or Eq. 12 alone when share ≤ 0 or radius ≤ 0.
+/// Sample `stream.sample` of `sampleCount` on x_o's tangent plane (orthonormal t1, t2) as the gather
+/// draws it for all three bands at once: the technique (p₂ with probability share when radius > 0,
+/// else band c's Eq. 12 with probability (1 − share)/3) picked by fract(ξ₀ + sample/sampleCount), ξ₀
+/// from dimension 2 of sample 0; stream (texelX, texelY, map, frame, SSS_SHARED_BAND = 3, sample)
+/// — stream.band is ignored.
 struct PlanarSample {
   glm::dvec3 xj{0.0};
   double r = 0.0, alpha = 0.0, weight = 0.0;  ///< weight = r/p(r, α) [mm²]
 };
 template <class Real>
-PlanarSample drawMixtureSample(const glm::dvec3& xo, const glm::dvec3& t1, const glm::dvec3& t2, double sigmaTr,
-                               double radius, double share, const RandomStreamId& stream, std::uint32_t sampleCount);
-extern template PlanarSample drawMixtureSample<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double,
-                                                      double, double, const RandomStreamId&, std::uint32_t);
-extern template PlanarSample drawMixtureSample<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
-                                                       double, double, double, const RandomStreamId&, std::uint32_t);
+PlanarSample drawSharedSample(const glm::dvec3& xo, const glm::dvec3& t1, const glm::dvec3& t2,
+                              const glm::dvec3& sigmaTr, double radius, double share, const RandomStreamId& stream,
+                              std::uint32_t sampleCount);
+extern template PlanarSample drawSharedSample<float>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                     const glm::dvec3&, double, double, const RandomStreamId&,
+                                                     std::uint32_t);
+extern template PlanarSample drawSharedSample<double>(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                      const glm::dvec3&, double, double, const RandomStreamId&,
+                                                      std::uint32_t);
 
 /// Optical properties per colour band (r, g, b) [mm⁻¹] and the relative index of refraction.
 struct RadiosityMaterial {
@@ -112,13 +118,19 @@ struct LightGBufferHit {
 /// x_j [mm] → the G-buffer entry, or nothing (no surface there: the sample contributes 0).
 using LightGBufferLookup = std::function<std::optional<LightGBufferHit>(const glm::dvec3& xj)>;
 
+/// How the three colour bands' samples are drawn: one pattern for all three (the gather's, issue
+/// 17: sssDrawSharedSample, each band weighted by the mixture), or each band its own with its σ_tr
+/// (the paper's §3.1: sssDrawSample, stream band c) — kept to measure against.
+enum class BandSampling { Shared, PerBand };
+
 struct ScatteredRadiosityInput {
   glm::dvec3 xo{0.0}, no{0.0, 0.0, 1.0};  ///< the point of emergence [mm] and its outward normal
   glm::dvec3 toLight{0.0, 0.0, 1.0};      ///< unit, toward the directional light (= −ω_ℓ)
   glm::dvec3 irradiance{1.0};             ///< E per band [W/m²] on a surface facing the light (= L_ℓ)
   RadiosityMaterial material;
   BssrdfModel model = BssrdfModel::Directional;
-  int samples = 1;  ///< N per band (≥ 1)
+  int samples = 1;  ///< N per band (≥ 1); with BandSampling::Shared the bands share the N
+  BandSampling bandSampling = BandSampling::Shared;
   /// The random stream: texel (x, y) of map k at accumulated frame F (band and sample are looped).
   std::uint32_t texelX = 0, texelY = 0, map = 0, frame = 0;
   /// Orthonormal basis of the sampling plane (the light's view plane for a directional light).
@@ -131,10 +143,12 @@ struct ScatteredRadiosity {
 };
 
 /// B_N(x_o) = (π E/N) Σ_j S_d(x_i, −ω_ℓ; x_o) F_t(−ω_ℓ) cos θ_ℓ r_j/p(r_j, α_j)   (Eq. 9)
-/// for each colour band c with its own σ_tr and sample positions (§3.1): sample j of band c draws
-/// (r, α) from stream (texelX, texelY, map, frame, c, j), forms x_j = x_o + r(cos α t1 + sin α t2),
-/// looks up (x_i, n_i) = lookup(x_j), and adds the shared term (0 on a miss or where n_i faces away
-/// from the light). Real selects the instantiation of the shared code. Throws
+/// for each colour band c. BandSampling::Shared (as the gather): sample j is drawn once for the three
+/// bands by drawSharedSample (directional light: share 0), looked up once, and each band adds its
+/// term with the mixture's weight. BandSampling::PerBand (§3.1): sample j of band c draws (r, α) of
+/// Eq. 12 with band c's σ_tr from stream (texelX, texelY, map, frame, c, j). Either way
+/// x_j = x_o + r(cos α t1 + sin α t2), (x_i, n_i) = lookup(x_j), and the term is the shared code's
+/// (0 on a miss or where n_i faces away from the light). Real selects the instantiation of the shared code. Throws
 /// std::invalid_argument for samples < 1, or where validateBssrdfConfig rejects a band's
 /// (x_o, n_o, toLight, material): non-unit n_o or toLight, invalid coefficients or η.
 template <class Real>
