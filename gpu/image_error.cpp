@@ -71,6 +71,50 @@ ImageError imageError(const Image& image, const Image& reference, const Image& m
   return e;
 }
 
+std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& reference, const Image& mask) {
+  checkSizes(image, reference, mask);
+  int top = mask.height, bottom = -1;
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x)
+      if (isObject(mask.at(x, y))) top = std::min(top, y), bottom = std::max(bottom, y);
+  if (bottom <= top) return std::nullopt;
+  const int split = (top + bottom + 1) / 2;
+  // The mask with the other half's rows cleared; imageError then does the rest.
+  const auto half = [&](int from, int to) {
+    Image m = mask;
+    for (int y = 0; y < m.height; ++y)
+      if (y < from || y >= to)
+        for (int x = 0; x < m.width; ++x) m.at(x, y).a = 0.0f;
+    return imageError(image, reference, m);
+  };
+  return HalvesError{half(top, split), half(split, bottom + 1)};
+}
+
+std::size_t fireflyCount(const Image& image, const Image& mask, float factor) {
+  if (image.width != mask.width || image.height != mask.height)
+    throw std::invalid_argument("firefly count: the image is " + sizeText(image) + " but the object mask is " +
+                                sizeText(mask));
+  std::size_t count = 0;
+  std::vector<float> window;
+  window.reserve(25);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (!isObject(mask.at(x, y))) continue;
+      bool firefly = false;
+      for (int c = 0; c < 3 && !firefly; ++c) {
+        window.clear();
+        for (int v = std::max(0, y - 2); v <= std::min(image.height - 1, y + 2); ++v)
+          for (int u = std::max(0, x - 2); u <= std::min(image.width - 1, x + 2); ++u)
+            if (isObject(mask.at(u, v))) window.push_back(image.at(u, v)[c]);
+        const auto middle = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+        std::nth_element(window.begin(), middle, window.end());
+        firefly = image.at(x, y)[c] > factor * *middle;
+      }
+      count += firefly ? 1 : 0;
+    }
+  return count;
+}
+
 Image differenceImage(const Image& image, const Image& reference, const Image& mask) {
   checkSizes(image, reference, mask);
   Image diff(reference.width, reference.height);

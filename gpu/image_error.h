@@ -5,6 +5,7 @@
 // statistic (sss::kReferenceErrorStatistic), so the two compare directly; max = max_p e_p.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "gpu/image.h"
@@ -37,6 +38,22 @@ ImageError imageError(const Image& image, const Image& reference, const Image& m
 /// change relative to the mean radiance. 0 for identical frames; throws std::invalid_argument on
 /// mismatched sizes; NaN when the masked pixels of `now` are all black.
 double relativeChange(const Image& now, const Image& before, const std::vector<std::uint8_t>& mask);
+
+/// The error over the upper and the lower half of the object's rows (issue 17's per-region bias:
+/// compare meanRatio of each). The object's rows [top, bottom] of `mask` split at (top + bottom + 1)/2:
+/// the upper half above that row, the lower half from it down. std::nullopt when the object spans
+/// fewer than two rows; throws as imageError on mismatched sizes or an empty mask.
+struct HalvesError {
+  ImageError upper, lower;
+};
+std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& reference, const Image& mask);
+
+/// Fireflies (issue 17): object pixels of `image` with a channel above `factor` times the median of
+/// that channel over the object pixels of its 5×5 neighbourhood (itself included; the upper median
+/// of an even count). Throws
+/// std::invalid_argument when the sizes differ.
+inline constexpr float kFireflyFactor = 4.0f;
+std::size_t fireflyCount(const Image& image, const Image& mask, float factor = kFireflyFactor);
 
 /// |Δ| per band, alpha e_p (both 0 outside the mask), for pictures. Same errors as imageError.
 Image differenceImage(const Image& image, const Image& reference, const Image& mask);

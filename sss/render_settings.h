@@ -31,8 +31,8 @@ struct SssSettings {
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
   /// sss.point_share: the share of point-light samples drawn from the stereographic density about
   /// the light instead of Eq. 12 (shaders/maps/estimator.glsl, issue 17); 0: Eq. 12 alone (the
-  /// default until the share is measured against the reference: docs/radiosity-maps.md).
-  float pointShare = 0.0f;
+  /// paper). 0.25 takes the candle's lower-wall bias from −12.7% to −0.3% (docs/radiosity-maps.md).
+  float pointShare = 0.25f;
   bool lightMapAuto = false;  ///< sss.light_map_auto: raise the light map size against pearling
   bool computeGather = true;  ///< sss.gather: false = the paper's fragment pass, true = compute pass
   bool projectedArea = true;  ///< sss.projected_area: the sampling plane's Jacobian (false: the paper's Eq. 9)

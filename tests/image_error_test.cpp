@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace tallow {
@@ -139,6 +140,56 @@ TEST(ImageError, SizeMismatchAndEmptyMaskThrow) {
   EXPECT_THROW(gpu::imageError(ref, ref, gpu::Image(kW, kH + 1)), std::invalid_argument);
   EXPECT_THROW(gpu::imageError(ref, ref, gpu::Image(kW, kH)), std::invalid_argument);  // all alpha 0
   EXPECT_THROW(gpu::differenceImage(ref, constant(glm::vec3(0.5f), kW, kH + 2), mask), std::invalid_argument);
+}
+
+// --- Issue 17's region bias and firefly count ---------------------------------------------------
+
+TEST(ImageErrorByHalf, SplitsTheObjectsRowsAtTheMiddle) {
+  // Object rows 1..4 of 7×5 (columns 0..6): split at (1 + 4 + 1)/2 = 3, so rows 1–2 above, 3–4 below.
+  gpu::Image mask(kW, kH);
+  for (int y = 1; y < 5; ++y)
+    for (int x = 0; x < kW; ++x) mask.at(x, y).a = 1.0f;
+  const gpu::Image ref = constant({1.0f, 2.0f, 0.5f});
+  gpu::Image image = ref;
+  for (int y = 3; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) image.at(x, y) = glm::vec4(0.8f * glm::vec3(ref.at(x, y)), 1.0f);
+  image.at(3, 0) = glm::vec4(100.0f);  // outside the object: never counts
+  const std::optional<gpu::HalvesError> h = gpu::imageErrorByHalf(image, ref, mask);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_EQ(h->upper.pixels, 2u * kW);
+  EXPECT_EQ(h->lower.pixels, 2u * kW);
+  EXPECT_DOUBLE_EQ(h->upper.meanRatio, 1.0);
+  EXPECT_NEAR(h->lower.meanRatio, 0.8, 1e-7);
+  // One row has no halves.
+  EXPECT_FALSE(gpu::imageErrorByHalf(image, ref, rectMask(1, 2, 5, 3)).has_value());
+  EXPECT_THROW(gpu::imageErrorByHalf(constant({1, 1, 1}, 3, 3), ref, mask), std::invalid_argument);
+}
+
+TEST(FireflyCount, ChannelsAboveFourTimesTheirNeighbourhoodsMedian) {
+  gpu::Image image = constant({1.0f, 1.0f, 1.0f}, 20, 20);
+  gpu::Image mask = constant({0, 0, 0}, 20, 20);  // alpha 1: all object
+  image.at(5, 5).r = 4.01f;    // above 4×: one
+  image.at(10, 10).g = 3.99f;  // below: none
+  image.at(15, 15).b = 100.0f;  // one
+  image.at(2, 17) = glm::vec4(5.0f, 5.0f, 5.0f, 1.0f);  // all three channels: still one pixel
+  EXPECT_EQ(gpu::fireflyCount(image, mask), 3u);
+  EXPECT_EQ(gpu::fireflyCount(image, mask, 3.0f), 4u);  // the factor is the threshold
+}
+
+TEST(FireflyCount, EdgesAndTheObjectsBorderAreNoFireflies) {
+  // A step from 1 to 10 at x = 10: a pixel on either side has a majority of its side in its 5×5
+  // window, so its median is its own level.
+  gpu::Image step = constant({1.0f, 1.0f, 1.0f}, 20, 20);
+  for (int y = 0; y < 20; ++y)
+    for (int x = 10; x < 20; ++x) step.at(x, y) = glm::vec4(10.0f, 10.0f, 10.0f, 1.0f);
+  EXPECT_EQ(gpu::fireflyCount(step, constant({0, 0, 0}, 20, 20)), 0u);
+  // A one-pixel-wide object on black: the median is over object pixels only (with the background
+  // it would be 0 and every object pixel would count).
+  gpu::Image column = constant({0.0f, 0.0f, 0.0f}, 9, 9);
+  gpu::Image mask(9, 9);
+  for (int y = 0; y < 9; ++y) column.at(4, y) = glm::vec4(1.0f), mask.at(4, y).a = 1.0f;
+  EXPECT_EQ(gpu::fireflyCount(column, mask), 0u);
+  EXPECT_THROW(gpu::fireflyCount(column, step), std::invalid_argument);
 }
 
 }  // namespace

@@ -369,8 +369,11 @@ TEST(RadiosityMaps, StereographicCorrectionLowersTheVarianceInsideTheCandleHolde
   // with each sample weighted by dA_i/dA_j (sss.projected_area), which takes most of the planar
   // look-up's noise away too (its far samples land close to the light with a large 1/d²).
   for (const bool projected : {false, true}) {
+    // The paper's comparison: Eq. 12 alone (no second density, which is drawn about the light
+    // whatever the look-up and would blur what the correction itself changes).
     const std::vector<std::string> common{"render.width=64", "render.height=48", "sss.maps=6", "sss.samples=4",
                                           "sss.map_size=128", "sss.light_map_size=128", "render.shadows=false",
+                                          "sss.point_share=0",
                                           std::string("sss.projected_area=") + (projected ? "true" : "false")};
     std::vector<std::string> stereo = common, planar = common;
     stereo.push_back("sss.stereographic=true");

@@ -73,6 +73,7 @@ struct ReferenceGroup {
   gpu::Image radiance, standardError;
   gpu::Image emergent;  ///< --receivers: the emergent term alone, alpha 1 on receiver pixels
   std::size_t objectPixels = 0;
+  std::size_t fireflies = 0;  ///< gpu::fireflyCount of the reference itself (its own noise)
   json info;  ///< passes, relative error, seconds, file
   std::string file;  ///< name in DIR, when computed here
   bool complete = true;  ///< false: a stop request cut its integration short
@@ -100,6 +101,8 @@ struct RowResult {
   int frames = 0, convergedFrames = 0;
   double firstWallMs = 0.0;
   gpu::ImageError firstError, lastError;
+  std::optional<gpu::HalvesError> lastHalves;  ///< the last frame's upper and lower half of the object
+  std::size_t lastFireflies = 0;              ///< gpu::fireflyCount of the last frame
   std::vector<double> wallMs, accumulatingMs, convergedMs;
   std::map<std::string, std::vector<double>> passMs;
   std::map<std::string, std::vector<double>> passCpuMs;  ///< the CPU clock's time in each pass
@@ -272,6 +275,8 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
       term.pixels[i] = glm::vec4(glm::vec3(term.pixels[i] - dark.pixels[i]), 1.0f);
     row.receiverError = gpu::imageError(term, ref.emergent, ref.emergent);
   }
+  row.lastHalves = gpu::imageErrorByHalf(row.last, ref.radiance, ref.standardError);
+  row.lastFireflies = gpu::fireflyCount(row.last, ref.standardError);
   row.convergedFrames = static_cast<int>(row.convergedMs.size());
   row.gpuBytes = renderer.gpuBytes();
   row.triangles = renderer.triangleCount();
@@ -295,6 +300,13 @@ void runEqualTime(const LoadedScene& truth, const ReferenceGroup& ref, const Ben
   row.equalTimePasses = r.passes;
   row.equalTimeError = gpu::imageError(r.radiance, ref.radiance, ref.standardError);
   row.equalTimeImage = r.radiance;
+}
+
+/// A mean ratio for the console, to 3 decimals.
+std::string ratioText(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", ratio);
+  return text;
 }
 
 json optionalNumber(const std::vector<double>& values) { return values.empty() ? json(nullptr) : json(median(values)); }
@@ -365,7 +377,9 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
                         "first_rel_rmse", "median_wall_ms", "median_accumulating_wall_ms", "median_converged_wall_ms"})
     header.push_back(h);
   for (const std::string& p : b.passNames) header.push_back("gpu_ms_" + p);
-  for (const char* h : {"last_rmse", "last_rel_rmse", "last_max_error"}) header.push_back(h);
+  for (const char* h : {"last_rmse", "last_rel_rmse", "last_max_error", "last_upper_mean_ratio", "last_lower_mean_ratio",
+                        "last_fireflies", "reference_fireflies"})
+    header.push_back(h);
   if (o.equalTime)
     for (const char* h : {"equal_time_ms", "equal_time_passes", "equal_time_rel_rmse"}) header.push_back(h);
   for (const char* h : {"object_pixels", "gpu_bytes", "maps_bytes", "triangles"}) header.push_back(h);
@@ -407,6 +421,10 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
                    {"last_rmse", row.lastError.rmse},
                    {"last_rel_rmse", row.lastError.relRmse},
                    {"last_max_error", row.lastError.maxError},
+                   {"last_fireflies", row.lastFireflies},
+                   {"reference_fireflies", ref.fireflies},
+                   {"last_upper_mean_ratio", row.lastHalves ? json(row.lastHalves->upper.meanRatio) : json(nullptr)},
+                   {"last_lower_mean_ratio", row.lastHalves ? json(row.lastHalves->lower.meanRatio) : json(nullptr)},
                    {"object_pixels", row.lastError.pixels},
                    {"gpu_bytes", row.gpuBytes},
                    {"maps_bytes", row.mapsBytes ? json(*row.mapsBytes) : json(nullptr)},
@@ -460,6 +478,7 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
     json entry = g.info;
     entry["settings"] = s;
     entry["object_pixels"] = g.objectPixels;
+    entry["fireflies"] = g.fireflies;
     entry["complete"] = g.complete;
     references.push_back(entry);
   }
@@ -677,6 +696,7 @@ int runBench(const BenchOptions& o) {
                    g.info["passes"].get<int>(), percent(g.relError()).c_str(), g.complete ? "" : " (stopped early)");
     }
     g.objectPixels = gpu::objectPixels(g.standardError);
+    g.fireflies = gpu::fireflyCount(g.radiance, g.standardError);
     if (o.receivers && (g.emergent.pixels.empty() || gpu::objectPixels(g.emergent) == 0))
       throw InputError("bench: --receivers: the reference has no receiver pixel (no opaque surface in view)");
     if (g.objectPixels == 0)
@@ -724,10 +744,15 @@ int runBench(const BenchOptions& o) {
     for (const auto& [name, ms] : row.passMs)
       if (std::find(state.passNames.begin(), state.passNames.end(), name) == state.passNames.end())
         state.passNames.push_back(name);
-    char line[512];
-    std::snprintf(line, sizeof line, "%-40s first %9.3f ms rel %-7s median %9.3f ms  last rel %-7s (reference ε %s)",
+    char line[640];
+    std::snprintf(line, sizeof line,
+                  "%-40s first %9.3f ms rel %-7s median %9.3f ms  last rel %-7s (reference ε %s)  mean/ref upper %s "
+                  "lower %s  fireflies %zu (reference %zu)",
                   c.name.c_str(), row.firstWallMs, percent(row.firstError.relRmse).c_str(), median(row.wallMs),
-                  percent(row.lastError.relRmse).c_str(), percent(ref.relError()).c_str());
+                  percent(row.lastError.relRmse).c_str(), percent(ref.relError()).c_str(),
+                  row.lastHalves ? ratioText(row.lastHalves->upper.meanRatio).c_str() : "-",
+                  row.lastHalves ? ratioText(row.lastHalves->lower.meanRatio).c_str() : "-", row.lastFireflies,
+                  ref.fireflies);
     progress.print(line, stdout);
     writeRowPictures(out / kRowsFolder / c.name, c, ref, row, figures);
     // The pictures are on disk: the row keeps only its numbers.

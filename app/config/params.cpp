@@ -370,7 +370,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                         "exponential, weighted by the mixture's density. It reaches wax lit from "
                                         "centimetres away, which Eq. 12 almost never samples and cuts off at "
                                         "16.6/sigma_tr; 0: Eq. 12 alone (the paper).", 0.0, 0.95),
-                                0.0),
+                                0.25),
                     [](auto& c) -> auto& { return c.render.sss.pointShare; }));
 
   // --- Subsurface light propagation volumes (issue 8; Borlum et al. 2011, docs/sslpv.md) ------------
