@@ -49,20 +49,13 @@ double CandleField::value(glm::dvec3 p) const { return candle_f64::candleFieldVa
 glm::dvec3 CandleField::gradient(glm::dvec3 p) const { return candle_f64::candleFieldGradient(p, shape_); }
 
 Aabb CandleField::bounds() const {
-  // The cylinder, the wick and every drip sphere (the round cones are their hulls); the smooth
-  // union adds at most k/4 where two parts meet, which the band covers (k/4 = half a voxel).
-  double reach = shape_.radius, low = 0.0;
-  const int spheres = candle_f64::CANDLE_DRIP_SPHERES * shape_.dripCount;
-  for (int i = 0; i < spheres; ++i) {
-    const glm::dvec3 c = shape_.dripCentre[i];
-    reach = std::max(reach, std::hypot(c.x, c.z) + shape_.dripRadius[i]);
-    low = std::min(low, c.y - shape_.dripRadius[i]);
-  }
-  const double high = std::max(shape_.height, shape_.wickTop);
+  // The cylinder that holds every part (candleShapeAt), padded by the band: the smooth union adds
+  // at most k/4 where two parts meet, which the band covers (k/4 = half a voxel).
   const double pad = shape_.band;
+  const double reach = shape_.reach + pad;
   Aabb box;
-  box.extend(glm::vec3(glm::dvec3(-reach - pad, low - pad, -reach - pad)));
-  box.extend(glm::vec3(glm::dvec3(reach + pad, high + pad, reach + pad)));
+  box.extend(glm::vec3(glm::dvec3(-reach, shape_.low - pad, -reach)));
+  box.extend(glm::vec3(glm::dvec3(reach, shape_.high + pad, reach)));
   return box;
 }
 

@@ -24,6 +24,9 @@ void GpuCandleField::setUniforms(gpu::Program& program, const CandleField& candl
   program.set("uCandle.flameY", f(c.flameY));
   program.set("uCandle.smoothing", f(c.smoothing));
   program.set("uCandle.band", f(c.band));
+  program.set("uCandle.reach", f(c.reach));
+  program.set("uCandle.low", f(c.low));
+  program.set("uCandle.high", f(c.high));
   program.set("uCandle.dripCount", c.dripCount);
   std::array<glm::vec3, candle_f64::CANDLE_MAX_SPHERES> centres{};
   for (int i = 0; i < candle_f64::CANDLE_MAX_SPHERES; ++i) {

@@ -79,6 +79,9 @@ struct CandleShape {
   real flameY;       // the flame (a point light) on the axis
   real smoothing;    // k: radius of the smooth min/max and of the cylinder's rounded edges
   real band;         // values are clamped to ± band
+  real reach;        // the capped cylinder about the y axis that holds every part: radius,
+  real low;          //   lowest and
+  real high;         //   highest y
   int dripCount;     // drips that have started (each CANDLE_DRIP_SPHERES consecutive spheres)
   real3 dripCentre[CANDLE_MAX_SPHERES];
   real dripRadius[CANDLE_MAX_SPHERES];
@@ -143,6 +146,14 @@ TALLOW_FN CandleShape candleShapeAt(real s, CandleParamsGlsl p) {
     }
     c.dripCount += 1;
   }
+  // The round cones are the hulls of their spheres, so the spheres bound them.
+  c.reach = c.radius;
+  c.low = real(0);
+  for (int k = 0; k < CANDLE_DRIP_SPHERES * c.dripCount; ++k) {
+    c.reach = max(c.reach, length(real2(c.dripCentre[k].x, c.dripCentre[k].z)) + c.dripRadius[k]);
+    c.low = min(c.low, c.dripCentre[k].y - c.dripRadius[k]);
+  }
+  c.high = max(c.height, c.wickTop);
   return c;
 }
 
@@ -223,8 +234,18 @@ TALLOW_FN CandleSdf candleSmoothSubtract(CandleSdf a, CandleSdf b, real k) {
 // (0 where clamped).
 TALLOW_FN CandleSdf candleField(real3 p, CandleShape c) {
   real k = c.smoothing;
+  // Two early outs that return what the full evaluation below returns, skipping the drips (most
+  // lattice samples are beyond the band). The smooth min lies at most k/4 below the min, the smooth
+  // max at most k/4 above the max, so: (1) every part lies in the cylinder (reach, low, high), so
+  // the field is at least the distance to it − k/4 and clamps to +band where that is ≥ band;
+  // (2) where the wax cylinder is below −(band + k/4) and the bowl above band + k/4, the cup's
+  // smooth max is at most −band and the drips and the wick only lower it: −band.
+  real slack = c.band + real(0.25) * k;
+  if (candleCylinder(p, c.reach, c.low, c.high).d >= slack) return candleSdf(c.band, real3(real(0)));
   CandleSdf wax = candleCylinder(p, c.radius - k, k, c.height - k);
   wax.d -= k;  // edges rounded by k, outer size unchanged
+  CandleSdf bowl = candleSphere(p, real3(real(0), c.bowlCentreY, real(0)), c.bowlRadius);
+  if (wax.d <= -slack && bowl.d >= slack) return candleSdf(-c.band, real3(real(0)));
   for (int i = 0; i < c.dripCount; ++i) {
     int s = CANDLE_DRIP_SPHERES * i;
     CandleSdf drip = candleRoundCone(p, c.dripCentre[s], c.dripRadius[s], c.dripCentre[s + 1], c.dripRadius[s + 1]);
@@ -232,7 +253,6 @@ TALLOW_FN CandleSdf candleField(real3 p, CandleShape c) {
     if (bead.d < drip.d) drip = bead;
     wax = candleSmoothUnion(wax, drip, k);
   }
-  CandleSdf bowl = candleSphere(p, real3(real(0), c.bowlCentreY, real(0)), c.bowlRadius);
   wax = candleSmoothSubtract(wax, bowl, k);
   CandleSdf wick = candleCylinder(p, c.wickRadius, c.wickBottom, c.wickTop);
   if (wick.d < wax.d) wax = wick;
