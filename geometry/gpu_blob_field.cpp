@@ -7,7 +7,7 @@
 namespace tallow::geometry {
 
 GpuBlobField::GpuBlobField(const gpu::ShaderLibrary& library)
-    : lattice_(library, {{{GL_COMPUTE_SHADER, "fields/blob_lattice.comp"}}}) {}
+    : lattice_(library, {{{GL_COMPUTE_SHADER, "fields/lattice.comp"}}, {"FIELD_BLOB"}}) {}
 
 void GpuBlobField::setUniforms(gpu::Program& program, const BlobField& blob) {
   std::array<glm::vec3, BlobParams::kBlobCount> centres{};

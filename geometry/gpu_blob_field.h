@@ -2,7 +2,7 @@
 // The animated blob (BlobField) evaluated on the GPU: Φ_t and its analytic gradient from the blob's
 // centres at t as uniforms (shaders/fields/blob.glsl, the lines BlobField::value / gradient
 // evaluate in C++). fill() writes a GpuDualContouring's lattice with a compute shader
-// (shaders/fields/blob_lattice.comp) and sets the uniforms of its analytic vertex normals: per
+// (shaders/fields/lattice.comp with FIELD_BLOB) and sets the uniforms of its analytic vertex normals: per
 // frame, the CPU computes four centres (BlobField's constructor: a few sin() each) and sets
 // uniforms; no lattice is sampled on the CPU, nothing is uploaded, nothing is read back.
 #include "geometry/blob_field.h"

@@ -40,6 +40,7 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   std::vector<std::string> vertexDefines = defines;
   if (placement_ == VertexPlacement::Qef) vertexDefines.emplace_back("DC_QEF");
   if (normals_ == NormalSource::BlobGradient) vertexDefines.emplace_back("DC_BLOB_NORMALS");
+  if (normals_ == NormalSource::CandleGradient) vertexDefines.emplace_back("DC_CANDLE_NORMALS");
   classify_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/classify.comp"}}, defines});
   vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
                                       {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
@@ -102,7 +103,7 @@ void GpuDualContouring::upload(const SampledLattice& lattice) {
 }
 
 void GpuDualContouring::fillOnGpu(gpu::Program& fill, glm::dvec3 origin, double cellSize) {
-  constexpr GLuint kFillGroup = 4;  // local_size of the fill programs (fields/blob_lattice.comp): 4³
+  constexpr GLuint kFillGroup = 4;  // local_size of the fill programs (fields/lattice.comp): 4³
   setLatticeFrame(origin, cellSize);
   fill.set("uSamples", n_);
   fill.set("uOrigin", origin_);

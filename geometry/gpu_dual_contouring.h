@@ -1,17 +1,18 @@
 #pragma once
 // GPU dual contouring (surface nets after Gibson 1998, as the radiosity-maps paper §4 cites) of a
 // lattice of field samples in a GL_R32F 3D texture, filled either by upload() of a SampledLattice
-// sampled on the CPU (candle, mesh fields) or on the GPU by fillOnGpu() with a compute program that
-// evaluates the field itself (the blob: GpuBlobField, shaders/fields/blob_lattice.comp; no CPU
-// lattice, no upload). Four passes, all on the GPU:
+// sampled on the CPU (mesh fields) or on the GPU by fillOnGpu() with a compute program that
+// evaluates the field itself (the blob and the candle: GpuBlobField, GpuCandleField,
+// shaders/fields/lattice.comp; no CPU lattice, no upload). Four passes, all on the GPU:
 //   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
 //      indirect draw command (instances = active blocks);
 //   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (usually
 //      one patch, up to four where a face is ambiguous, see shaders/dual_contouring/patches.glsl),
 //      placed by `VertexPlacement`: the mean of the patch's edge crossings, or the minimum of the
 //      probabilistic quadric of their tangent planes kept in the cell (qef.glsl); normal from the
-//      texture's gradient, or with NormalSource::BlobGradient from the blob's analytic gradient
-//      (shaders/fields/blob.glsl, uniforms set on normalProgram()), captured by transform feedback;
+//      texture's gradient, or with NormalSource::BlobGradient / CandleGradient from the field's
+//      analytic gradient (shaders/fields/blob.glsl, candle.glsl; uniforms set on normalProgram()),
+//      captured by transform feedback;
 //   3. index_map.comp: first vertex of each cell (emission order) → GL_R32I 3D index map,
 //      dispatched indirectly;
 //   4. cells.vert + quads.geom: two triangles per sign-changing edge, outward winding, captured by
@@ -34,6 +35,7 @@ namespace tallow::geometry {
 enum class NormalSource {
   LatticeGradient,  ///< central differences of the texture: any field
   BlobGradient,     ///< the blob's analytic gradient at the vertex (GpuBlobField sets its uniforms)
+  CandleGradient,   ///< the candle's analytic gradient at the vertex (GpuCandleField sets its uniforms)
 };
 
 class GpuDualContouring {
@@ -66,8 +68,9 @@ class GpuDualContouring {
   void fillOnGpu(gpu::Program& fill, glm::dvec3 origin, double cellSize);
   /// Runs the four passes on the uploaded lattice; no CPU read-back, no stall.
   void extract();
-  /// The vertex pass's program (pass 2): with NormalSource::BlobGradient its blob uniforms
-  /// (shaders/fields/blob_uniforms.glsl) must be set here before extract().
+  /// The vertex pass's program (pass 2): with NormalSource::BlobGradient / CandleGradient the
+  /// field's uniforms (shaders/fields/blob_uniforms.glsl, candle_uniforms.glsl) must be set here
+  /// before extract().
   gpu::Program& normalProgram() { return vertices_; }
   NormalSource normalSource() const { return normals_; }
   std::size_t uploadCount() const { return uploads_; }  ///< upload() calls so far

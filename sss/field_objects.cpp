@@ -28,22 +28,35 @@ struct FieldObjects::Entry {
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
                                                                 const FieldSource& source, int n,
                                                                 geometry::VertexPlacement placement) {
-  const geometry::NormalSource normals =
-      source.kind() == FieldKind::Blob ? geometry::NormalSource::BlobGradient : geometry::NormalSource::LatticeGradient;
+  geometry::NormalSource normals = geometry::NormalSource::LatticeGradient;
+  if (source.kind() == FieldKind::Blob) normals = geometry::NormalSource::BlobGradient;
+  if (source.kind() == FieldKind::Candle) normals = geometry::NormalSource::CandleGradient;
   return std::make_unique<geometry::GpuDualContouring>(shaders, n, placement, normals);
 }
 
-void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     geometry::GpuBlobField* blobOnGpu) {
-  // The blob from its centres at t (uniforms): no CPU lattice, no upload. The others on the CPU.
+void GpuFieldPrograms::fill(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc) {
+  const geometry::SampledLattice frame = source.gpuLattice(timeS, dc.samplesPerAxis());
   if (const std::optional<geometry::BlobField> blob = source.blobAt(timeS)) {
-    if (!blobOnGpu) throw std::logic_error("putFieldLattice: a blob field needs a GpuBlobField");
-    blobOnGpu->fill(dc, *blob, source.blobLattice(dc.samplesPerAxis()));
-  } else
+    if (!blob_) blob_ = std::make_unique<geometry::GpuBlobField>(shaders_);
+    blob_->fill(dc, *blob, frame);
+  } else if (const std::optional<geometry::CandleField> candle = source.candleAt(timeS)) {
+    if (!candle_) candle_ = std::make_unique<geometry::GpuCandleField>(shaders_);
+    candle_->fill(dc, *candle, frame);
+  } else {
+    throw std::logic_error("GpuFieldPrograms::fill: not a field evaluated on the GPU");
+  }
+}
+
+void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
+                     GpuFieldPrograms& onGpu) {
+  // Analytic fields from their uniforms at t: no CPU lattice, no upload. Mesh fields on the CPU.
+  if (source.evaluatedOnGpu())
+    onGpu.fill(source, timeS, dc);
+  else
     dc.upload(source.sample(timeS, dc.samplesPerAxis()));
 }
 
-FieldObjects::FieldObjects(const gpu::ShaderLibrary& shaders, const Scene& scene) : shaders_(shaders) {
+FieldObjects::FieldObjects(const gpu::ShaderLibrary& shaders, const Scene& scene) : shaders_(shaders), onGpu_(shaders) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     if (o.shape != ShapeKind::Field) continue;
@@ -71,9 +84,7 @@ void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement place
     if (!e->stale(timeS, res, placement)) continue;
     if (!e->dc || e->res != res || e->placement != placement)
       e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
-    if (!blobOnGpu_ && e->source.kind() == FieldKind::Blob)
-      blobOnGpu_ = std::make_unique<geometry::GpuBlobField>(shaders_);
-    putFieldLattice(e->source, timeS, *e->dc, blobOnGpu_.get());
+    putFieldLattice(e->source, timeS, *e->dc, onGpu_);
     e->res = res;
     e->placement = placement;
     e->timeS = timeS;

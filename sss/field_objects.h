@@ -1,14 +1,17 @@
 #pragma once
 // The field objects of a scene (ShapeKind::Field): each frame whose time (or field.res) changed,
 // the field at that time is put on a lattice and isosurfaced on the GPU by GpuDualContouring;
-// otherwise the last transform-feedback mesh is drawn again. A blob's lattice is filled on the GPU
-// from its centres at t (geometry::GpuBlobField, shaders/fields/blob.glsl) and its normals come from
-// its analytic gradient; candle and mesh fields are sampled on the CPU and uploaded. Each object's
-// field, bounds and sampling come from its sss::FieldSource (shared with `tallow mesh` / `field`).
+// otherwise the last transform-feedback mesh is drawn again. The analytic fields' lattices are
+// filled on the GPU from uniforms at t — the blob's centres (geometry::GpuBlobField,
+// shaders/fields/blob.glsl), the candle's shape (geometry::GpuCandleField, shaders/fields/candle.glsl)
+// — and their normals come from their analytic gradients; mesh fields are sampled on the CPU and
+// uploaded. Each object's field, bounds and sampling come from its sss::FieldSource (shared with
+// `tallow mesh` / `field`).
 #include <memory>
 #include <vector>
 
 #include "geometry/gpu_blob_field.h"
+#include "geometry/gpu_candle_field.h"
 #include "geometry/gpu_dual_contouring.h"
 #include "geometry/scalar_field.h"
 #include "gpu/shader_library.h"
@@ -19,16 +22,31 @@ namespace tallow::sss {
 
 class FieldSource;
 
-/// An extractor for `source` at n³ samples, as the renderer makes it: a blob's vertex normals from
-/// its analytic gradient, the other kinds' from the lattice.
+/// An extractor for `source` at n³ samples, as the renderer makes it: the analytic fields' vertex
+/// normals from their gradients (blob, candle), the mesh fields' from the lattice.
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
                                                                 const FieldSource& source, int n,
                                                                 geometry::VertexPlacement placement);
-/// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: a blob evaluated on the GPU
-/// by `blobOnGpu` (uniforms and one dispatch; needed for a blob), the other kinds sampled on the
-/// CPU and uploaded.
+
+/// The compute programs that evaluate the analytic fields on the GPU (FieldSource::evaluatedOnGpu),
+/// each built at its first use: the one place that picks GpuBlobField or GpuCandleField by kind.
+class GpuFieldPrograms {
+ public:
+  explicit GpuFieldPrograms(const gpu::ShaderLibrary& shaders) : shaders_(shaders) {}
+  /// Fills `dc`'s lattice with `source`'s field at t (uniforms and one dispatch) and sets its
+  /// analytic normals' uniforms. Throws std::logic_error unless source.evaluatedOnGpu().
+  void fill(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc);
+
+ private:
+  const gpu::ShaderLibrary& shaders_;
+  std::unique_ptr<geometry::GpuBlobField> blob_;
+  std::unique_ptr<geometry::GpuCandleField> candle_;
+};
+
+/// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: an analytic field evaluated
+/// on the GPU by `onGpu`, a mesh field sampled on the CPU and uploaded.
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     geometry::GpuBlobField* blobOnGpu);
+                     GpuFieldPrograms& onGpu);
 
 class FieldObjects {
  public:
@@ -45,8 +63,9 @@ class FieldObjects {
   /// with vertices placed by `placement`: nothing extracted yet, res or placement changed, or t
   /// changed for an animated field (blob, candle).
   bool stale(double timeS, int res, geometry::VertexPlacement placement) const;
-  /// The lattice at t of every stale field (pass "field.sample"): a blob's filled on the GPU (the
-  /// CPU only sets uniforms and dispatches), the others sampled on the CPU and uploaded;
+  /// The lattice at t of every stale field (pass "field.sample"): a blob's or a candle's filled on
+  /// the GPU (the CPU only sets uniforms and dispatches), a mesh field's sampled on the CPU and
+  /// uploaded;
   /// re-attaches the extractors to `geometry` (call geometry.update afterwards).
   void sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
@@ -61,7 +80,7 @@ class FieldObjects {
  private:
   const gpu::ShaderLibrary& shaders_;
   std::vector<std::unique_ptr<Entry>> entries_;
-  std::unique_ptr<geometry::GpuBlobField> blobOnGpu_;  ///< made at the first blob lattice
+  GpuFieldPrograms onGpu_;
 };
 
 }  // namespace tallow::sss

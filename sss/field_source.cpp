@@ -128,14 +128,28 @@ geometry::SampledLattice FieldSource::sample(double timeS, int n) const {
   return geometry::sampleField(*field, n);
 }
 
+bool FieldSource::evaluatedOnGpu() const {
+  return parts_->desc.kind == FieldKind::Blob || parts_->desc.kind == FieldKind::Candle;
+}
+
 std::optional<geometry::BlobField> FieldSource::blobAt(double timeS) const {
   if (parts_->desc.kind != FieldKind::Blob) return std::nullopt;
   return geometry::BlobField(timeS, parts_->blobParams());
 }
 
-geometry::SampledLattice FieldSource::blobLattice(int n) const {
-  if (parts_->desc.kind != FieldKind::Blob) throw std::logic_error("FieldSource::blobLattice: not a blob field");
-  return geometry::latticeOver(parts_->bounds, n);  // as sample() over the same box
+std::optional<geometry::CandleField> FieldSource::candleAt(double timeS) const {
+  if (parts_->desc.kind != FieldKind::Candle) return std::nullopt;
+  return geometry::CandleField(timeS, parts_->candleParams());
+}
+
+geometry::SampledLattice FieldSource::gpuLattice(double timeS, int n) const {
+  // As sample() over the same box.
+  switch (parts_->desc.kind) {
+    case FieldKind::Blob: return geometry::latticeOver(parts_->bounds, n);
+    case FieldKind::Candle: return geometry::latticeOver(candleAt(timeS)->bounds(), n);
+    case FieldKind::Mesh: break;
+  }
+  throw std::logic_error("FieldSource::gpuLattice: a mesh field is sampled on the CPU");
 }
 
 }  // namespace tallow::sss

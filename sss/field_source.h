@@ -45,12 +45,17 @@ class FieldSource {
   std::unique_ptr<geometry::ScalarField> at(double timeS) const;
   /// at(t) sampled on n³ points over the box the renderer isosurfaces for this kind of field.
   geometry::SampledLattice sample(double timeS, int n) const;
-  /// A blob field (FieldKind::Blob) at time t, which the renderer evaluates on the GPU
-  /// (geometry::GpuBlobField) instead of sample(); std::nullopt for the other kinds.
+  /// True for the fields the renderer evaluates on the GPU from uniforms (blob, candle:
+  /// geometry::GpuBlobField, GpuCandleField) instead of sample() + upload; mesh fields are sampled.
+  bool evaluatedOnGpu() const;
+  /// A blob field (FieldKind::Blob) at time t; std::nullopt for the other kinds.
   std::optional<geometry::BlobField> blobAt(double timeS) const;
-  /// The lattice sample(t, n) fills for a blob (the box of every t), without values: where the GPU
-  /// evaluates blobAt(t). Throws std::logic_error for the other kinds.
-  geometry::SampledLattice blobLattice(int n) const;
+  /// A candle field (FieldKind::Candle) at time t; std::nullopt for the other kinds.
+  std::optional<geometry::CandleField> candleAt(double timeS) const;
+  /// The lattice sample(t, n) fills, without values: where the GPU evaluates a field for which
+  /// evaluatedOnGpu() (a blob: the box of every t; a candle: its own box at t). Throws
+  /// std::logic_error for the other kinds.
+  geometry::SampledLattice gpuLattice(double timeS, int n) const;
 
   struct Parts;  ///< per kind, in field_source.cpp
 

@@ -40,14 +40,15 @@ PassIo shadowIo(const char* written) {
 bool FieldSamplePass::needed(const FrameState& state) const { return fieldCount(state.scene) > 0; }
 
 std::string FieldSamplePass::reason(const FrameState& state) const {
+  // Blob and candle: evaluated on the GPU from uniforms (FieldSource::evaluatedOnGpu).
   const auto blobs = std::count_if(state.scene.objects.begin(), state.scene.objects.end(), [](const SceneObject& o) {
-    return o.shape == ShapeKind::Field && o.field.kind == FieldKind::Blob;
+    return o.shape == ShapeKind::Field && (o.field.kind == FieldKind::Blob || o.field.kind == FieldKind::Candle);
   });
   const std::string lattice = std::to_string(state.settings.fieldRes) + "^3 lattice";
   const auto cpu = fieldCount(state.scene) - blobs;
   std::string out = std::to_string(fieldCount(state.scene)) + " field object(s) at a new time:";
   if (blobs > 0)
-    out.append(" ").append(std::to_string(blobs)).append(" blob(s) evaluated on the GPU on a ").append(lattice)
+    out.append(" ").append(std::to_string(blobs)).append(" analytic field(s) evaluated on the GPU on a ").append(lattice)
         .append(" (uniforms only)");
   if (blobs > 0 && cpu > 0) out.append(";");
   if (cpu > 0)

@@ -296,14 +296,15 @@ TEST_P(BlobGpuRendererPlacement, BlobFramesAreFilledOnTheGpuAndMatchTheCpuSample
 
 INSTANTIATE_TEST_SUITE_P(Placements, BlobGpuRendererPlacement, ::testing::Values("mass", "qef"));
 
-// The other kinds keep the CPU path: the candle's lattice is sampled and uploaded.
-TEST(BlobGpuRenderer, CandleKeepsTheCpuSampledLattice) {
+// The candle goes the same way since issue 16's point 2 (tests/candle_gpu_gltest.cpp has its
+// checks): filled on the GPU from its shape at t, analytic normals, nothing uploaded.
+TEST(BlobGpuRenderer, CandleTakesTheSameGpuPath) {
   PresetScene s("candle");
   s.render(0.0);
   const GpuDualContouring& rendered = *s.fieldItem().field;
-  EXPECT_EQ(rendered.uploadCount(), 1u);
-  EXPECT_EQ(rendered.gpuFillCount(), 0u);
-  EXPECT_EQ(rendered.normalSource(), NormalSource::LatticeGradient);
+  EXPECT_EQ(rendered.uploadCount(), 0u);
+  EXPECT_EQ(rendered.gpuFillCount(), 1u);
+  EXPECT_EQ(rendered.normalSource(), NormalSource::CandleGradient);
 }
 
 }  // namespace

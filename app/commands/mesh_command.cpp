@@ -10,7 +10,6 @@
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "geometry/cpu_mesher.h"
-#include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_dual_contouring.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
@@ -53,17 +52,16 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
     shaders = std::make_unique<gpu::ShaderLibrary>(makeShaderLibrary(options.scene.shaderDir));
   }
   geometry::TriangleMesh world;
-  std::unique_ptr<geometry::GpuBlobField> blobOnGpu;
+  std::unique_ptr<sss::GpuFieldPrograms> onGpu;
+  if (shaders) onGpu = std::make_unique<sss::GpuFieldPrograms>(*shaders);
   for (const PlacedField& f : fields) {
     geometry::TriangleMesh part;
     if (options.cpu) {
       part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
     } else {
-      // As the renderer: a blob evaluated on the GPU with analytic normals, the others uploaded.
-      if (!blobOnGpu && f.source.kind() == sss::FieldKind::Blob)
-        blobOnGpu = std::make_unique<geometry::GpuBlobField>(*shaders);
+      // As the renderer: blob and candle evaluated on the GPU with analytic normals, meshes uploaded.
       const auto dc = sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement);
-      sss::putFieldLattice(f.source, options.timeS, *dc, blobOnGpu.get());
+      sss::putFieldLattice(f.source, options.timeS, *dc, *onGpu);
       dc->extract();
       part = dc->readBack();
     }

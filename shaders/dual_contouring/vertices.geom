@@ -4,9 +4,10 @@
 // 1998), or, built with DC_QEF, at the minimum of the probabilistic quadric of their tangent planes
 // kept inside the cell (qef.glsl; the normal at a crossing is the lattice's gradient there,
 // crossingGradient below); then the face vertices the cell owns; normal = normalised field
-// gradient by central differences on the texture, or, built with DC_BLOB_NORMALS (the blob, filled
-// on the GPU by fields/blob_lattice.comp), the blob's analytic gradient at the vertex
-// (fields/blob.glsl, the lines geometry::BlobField::gradient evaluates). Captured by transform feedback as (position,
+// gradient by central differences on the texture, or, built with DC_BLOB_NORMALS / DC_CANDLE_NORMALS
+// (the fields filled on the GPU by fields/lattice.comp), the field's analytic gradient at the vertex
+// (fields/blob.glsl, fields/candle.glsl: the lines geometry::BlobField::gradient and
+// CandleField::gradient evaluate), the lattice's where that is 0 (a point on the wick's axis). Captured by transform feedback as (position,
 // normal, cell, bits); the vertices of a cell are consecutive (one invocation emits them in order).
 // The counter also builds the indirect dispatch of the index-map pass (one work group per 64
 // vertices).
@@ -15,11 +16,18 @@
 // Outside the #ifdefs: the loader expands each file once per stage, where it is first included,
 // whatever the preprocessor later keeps, so a file both variants need must not first appear in one.
 #include "common/shared.glsl"
+#include "bssrdf/real.glsl"
 #ifdef DC_QEF
 #include "dual_contouring/qef.glsl"
 #endif
-#ifdef DC_BLOB_NORMALS
+#if defined(DC_BLOB_NORMALS)
 #include "fields/blob_uniforms.glsl"
+vec3 analyticGradientAt(vec3 p) { return blobGradientAt(p); }
+#define DC_ANALYTIC_NORMALS
+#elif defined(DC_CANDLE_NORMALS)
+#include "fields/candle_uniforms.glsl"
+vec3 analyticGradientAt(vec3 p) { return candleGradientAt(p); }
+#define DC_ANALYTIC_NORMALS
 #endif
 
 layout(points) in;
@@ -71,14 +79,16 @@ vec3 crossingGradient(ivec3 a, int k, float t) {
 
 void emitVertex(vec3 s, int cell, uint bits) {
   vec3 position = uOrigin + uCellSize * s;
-#ifdef DC_BLOB_NORMALS
-  vec3 g = blobGradientAt(position);  // analytic: exact at the vertex, no lattice error
-#else
   const float h = 0.5;  // half-cell central differences (trilinear texture)
-  vec3 g = vec3(sampleLinear(s + vec3(h, 0, 0)) - sampleLinear(s - vec3(h, 0, 0)),
-                sampleLinear(s + vec3(0, h, 0)) - sampleLinear(s - vec3(0, h, 0)),
-                sampleLinear(s + vec3(0, 0, h)) - sampleLinear(s - vec3(0, 0, h)));
+#ifdef DC_ANALYTIC_NORMALS
+  vec3 g = analyticGradientAt(position);  // analytic: exact at the vertex, no lattice error
+  if (dot(g, g) == 0.0)  // on a medial axis (the wick's): the lattice's slope
+#else
+  vec3 g;
 #endif
+  g = vec3(sampleLinear(s + vec3(h, 0, 0)) - sampleLinear(s - vec3(h, 0, 0)),
+           sampleLinear(s + vec3(0, h, 0)) - sampleLinear(s - vec3(0, h, 0)),
+           sampleLinear(s + vec3(0, 0, h)) - sampleLinear(s - vec3(0, 0, h)));
   float len = length(g);
   tfPosition = position;
   tfNormal = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);

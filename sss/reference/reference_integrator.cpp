@@ -66,8 +66,9 @@ WorldMesh placeMesh(int objectIndex, geometry::TriangleMesh mesh, const glm::mat
 }
 
 /// The scene's shapes as drawn at time t: meshes and primitives by SceneGeometry::shapeMesh, field
-/// objects meshed on the CPU (geometry::meshOnCpu) from the lattice the GPU contours (a blob's the
-/// GPU fills itself from the same lines, shaders/fields/blob.glsl: equal up to float rounding).
+/// objects meshed on the CPU (geometry::meshOnCpu) from the lattice the GPU contours (a blob's and a
+/// candle's the GPU fills itself from the same lines, shaders/fields/blob.glsl and candle.glsl:
+/// equal up to float rounding).
 std::vector<WorldMesh> worldMeshes(const Scene& scene, int fieldRes, double timeS) {
   std::vector<WorldMesh> out;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
