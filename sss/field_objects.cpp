@@ -13,6 +13,7 @@ struct FieldObjects::Entry {
   int objectIndex = 0;
   FieldSource source;  ///< the field over time and its bounds (field units, every t)
   std::unique_ptr<geometry::GpuDualContouring> dc;
+  std::unique_ptr<geometry::GpuMeltField> melt;  ///< a melting mesh's grids on the GPU, made at its first lattice
   int res = 0;
   geometry::VertexPlacement placement = geometry::kDefaultPlacement;
   double timeS = std::numeric_limits<double>::quiet_NaN();
@@ -34,11 +35,15 @@ std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::Shade
 }
 
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     geometry::GpuBlobField* blobOnGpu) {
-  // The blob from its centres at t (uniforms): no CPU lattice, no upload. The others on the CPU.
+                     geometry::GpuBlobField* blobOnGpu, geometry::GpuMeltField* meltOnGpu) {
+  // The blob from its centres at t (uniforms), a melting mesh from its static grids and the melt's
+  // scalars at t: no CPU lattice, no per-frame upload. The others on the CPU.
   if (const std::optional<geometry::BlobField> blob = source.blobAt(timeS)) {
     if (!blobOnGpu) throw std::logic_error("putFieldLattice: a blob field needs a GpuBlobField");
     blobOnGpu->fill(dc, *blob, source.blobLattice(dc.samplesPerAxis()));
+  } else if (const std::optional<geometry::MeltAt> melt = source.meltAt(timeS)) {
+    if (!meltOnGpu) throw std::logic_error("putFieldLattice: a melting mesh field needs a GpuMeltField");
+    meltOnGpu->fill(dc, *melt, source.meltLattice(dc.samplesPerAxis()));
   } else
     dc.upload(source.sample(timeS, dc.samplesPerAxis()));
 }
@@ -73,7 +78,8 @@ void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement place
       e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
     if (!blobOnGpu_ && e->source.kind() == FieldKind::Blob)
       blobOnGpu_ = std::make_unique<geometry::GpuBlobField>(shaders_);
-    putFieldLattice(e->source, timeS, *e->dc, blobOnGpu_.get());
+    if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated()) e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);
+    putFieldLattice(e->source, timeS, *e->dc, blobOnGpu_.get(), e->melt.get());
     e->res = res;
     e->placement = placement;
     e->timeS = timeS;
@@ -102,6 +108,15 @@ std::size_t FieldObjects::bytes() const {
   std::size_t n = 0;
   for (const auto& e : entries_)
     if (e->dc) n += e->dc->bufferBytes();
+  for (const auto& e : entries_)
+    if (e->melt) n += e->melt->bytes();
+  return n;
+}
+
+std::size_t FieldObjects::meltGridUploads() const {
+  std::size_t n = 0;
+  for (const auto& e : entries_)
+    if (e->melt) n += e->melt->gridUploadCount();
   return n;
 }
 

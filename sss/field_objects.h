@@ -3,13 +3,16 @@
 // the field at that time is put on a lattice and isosurfaced on the GPU by GpuDualContouring;
 // otherwise the last transform-feedback mesh is drawn again. A blob's lattice is filled on the GPU
 // from its centres at t (geometry::GpuBlobField, shaders/fields/blob.glsl) and its normals come from
-// its analytic gradient; candle and mesh fields are sampled on the CPU and uploaded. Each object's
+// its analytic gradient; a melting mesh's from its static NanoVDB grids, uploaded once, and the
+// melt's scalars at t (geometry::GpuMeltField, shaders/fields/melt.glsl); the candle and still mesh
+// fields are sampled on the CPU and uploaded. Each object's
 // field, bounds and sampling come from its sss::FieldSource (shared with `tallow mesh` / `field`).
 #include <memory>
 #include <vector>
 
 #include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_dual_contouring.h"
+#include "geometry/gpu_melt_field.h"
 #include "geometry/scalar_field.h"
 #include "gpu/shader_library.h"
 #include "sss/scene.h"
@@ -25,10 +28,11 @@ std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::Shade
                                                                 const FieldSource& source, int n,
                                                                 geometry::VertexPlacement placement);
 /// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: a blob evaluated on the GPU
-/// by `blobOnGpu` (uniforms and one dispatch; needed for a blob), the other kinds sampled on the
-/// CPU and uploaded.
+/// by `blobOnGpu` (uniforms and one dispatch; needed for a blob), a melting mesh by `meltOnGpu`
+/// (its static grids uploaded at its first fill, then uniforms and one dispatch; needed for a
+/// melting mesh), the other kinds sampled on the CPU and uploaded.
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     geometry::GpuBlobField* blobOnGpu);
+                     geometry::GpuBlobField* blobOnGpu, geometry::GpuMeltField* meltOnGpu = nullptr);
 
 class FieldObjects {
  public:
@@ -55,6 +59,8 @@ class FieldObjects {
   /// GPU to finish the last extraction (a stall): for stats, not for the frame loop.
   std::size_t triangleCount() const;
   std::size_t bytes() const;
+  /// Uploads of melting meshes' static grids so far (one per melting mesh per renderer).
+  std::size_t meltGridUploads() const;
 
   struct Entry;
 

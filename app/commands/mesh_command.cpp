@@ -12,6 +12,7 @@
 #include "geometry/cpu_mesher.h"
 #include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_dual_contouring.h"
+#include "geometry/gpu_melt_field.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
 #include "sss/field_objects.h"
@@ -59,11 +60,15 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
     if (options.cpu) {
       part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
     } else {
-      // As the renderer: a blob evaluated on the GPU with analytic normals, the others uploaded.
+      // As the renderer: a blob evaluated on the GPU with analytic normals, a melting mesh from its
+      // NanoVDB grids and the melt at t, the others uploaded.
       if (!blobOnGpu && f.source.kind() == sss::FieldKind::Blob)
         blobOnGpu = std::make_unique<geometry::GpuBlobField>(*shaders);
+      std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
+      if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
+        meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
       const auto dc = sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement);
-      sss::putFieldLattice(f.source, options.timeS, *dc, blobOnGpu.get());
+      sss::putFieldLattice(f.source, options.timeS, *dc, blobOnGpu.get(), meltOnGpu.get());
       dc->extract();
       part = dc->readBack();
     }
