@@ -78,7 +78,8 @@ void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement place
       e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
     if (!blobOnGpu_ && e->source.kind() == FieldKind::Blob)
       blobOnGpu_ = std::make_unique<geometry::GpuBlobField>(shaders_);
-    if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated()) e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);
+    if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated())
+      e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);  // its grids go up at the first fill
     putFieldLattice(e->source, timeS, *e->dc, blobOnGpu_.get(), e->melt.get());
     e->res = res;
     e->placement = placement;

@@ -5,8 +5,8 @@
 // from its centres at t (geometry::GpuBlobField, shaders/fields/blob.glsl) and its normals come from
 // its analytic gradient; a melting mesh's from its static NanoVDB grids, uploaded once, and the
 // melt's scalars at t (geometry::GpuMeltField, shaders/fields/melt.glsl); the candle and still mesh
-// fields are sampled on the CPU and uploaded. Each object's
-// field, bounds and sampling come from its sss::FieldSource (shared with `tallow mesh` / `field`).
+// fields are sampled on the CPU and uploaded. Each object's field, bounds and sampling come from its
+// sss::FieldSource (shared with `tallow mesh` / `field`).
 #include <memory>
 #include <vector>
 
