@@ -34,6 +34,9 @@ void GpuMeltField::fill(GpuDualContouring& dc, const MeltAt& at, const SampledLa
   lattice_.set("uMeltPuddleRadius", static_cast<float>(s.puddleRadius));
   lattice_.set("uMeltPuddleHeight", static_cast<float>(s.puddleHeight));
   lattice_.set("uMeltJoinRadius", static_cast<float>(s.joinRadius));
+  lattice_.set("uMeltBoxLo", glm::vec3(grids.backgroundBoxLo()));
+  lattice_.set("uMeltBoxHi", glm::vec3(grids.backgroundBoxHi()));
+  lattice_.set("uMeltBackground", static_cast<float>(grids.bandWidth));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGridBinding, buffer_.id());
   dc.fillOnGpu(lattice_, frame.origin, frame.cellSize);
 }

@@ -133,6 +133,9 @@ std::shared_ptr<const MeltGrids> buildMeltGrids(const openvdb::FloatGrid& base, 
     }
     auto level = std::make_shared<detail::LevelSetGrid>();
     level->grid = current->deepCopy();
+    // melt.glsl takes every level's outside for `band` beyond their active voxels.
+    if (static_cast<double>(level->grid->background()) != band)
+      throw std::logic_error("MeshLevelSetField: a smoothing level changed the background value");
     g.levels.push_back(level);
     g.iterations.push_back(target);
     const Aabb levelBox = activeVoxelBounds(*level->grid);

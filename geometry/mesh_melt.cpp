@@ -40,6 +40,9 @@ melt_f64::MeltShape shapeOf(const MeltGrids& grids, const MeltState& s) {
   m.puddleRadius = s.puddleRadius;
   m.puddleHeight = s.puddleHeight;
   m.joinRadius = s.joinRadius;
+  m.boxLo = grids.backgroundBoxLo();
+  m.boxHi = grids.backgroundBoxHi();
+  m.background = grids.bandWidth;
   return m;
 }
 

@@ -67,6 +67,12 @@ struct MeltGrids {
   double maxSlope = 0.0;
 
   std::size_t bytes() const { return nanoVdb.size() * sizeof(std::uint32_t); }
+  /// Index-space box outside which a trilinear sample of any level reads only background values:
+  /// levelBounds / voxelSize grown by kBackgroundMarginVoxels (a sample's corners reach one voxel;
+  /// the half voxel covers levelBounds' float rounding).
+  static constexpr double kBackgroundMarginVoxels = 1.5;
+  glm::dvec3 backgroundBoxLo() const { return glm::dvec3(levelBounds.min) / voxelSize - kBackgroundMarginVoxels; }
+  glm::dvec3 backgroundBoxHi() const { return glm::dvec3(levelBounds.max) / voxelSize + kBackgroundMarginVoxels; }
 };
 
 /// The per-t scalars of a melt: shaders/fields/melt.glsl's MeltShape, in double.

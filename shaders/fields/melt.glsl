@@ -36,6 +36,9 @@ struct MeltShape {
   real puddleRadius;  // R, world units
   real puddleHeight;  // h, world units; 0: no puddle yet
   real joinRadius;    // k of the smooth union, world units
+  real3 boxLo;        // index-space box beyond which every level is its background (1.5 voxels
+  real3 boxHi;        // outside the levels' active voxels: no corner of a sample there is active)
+  real background;    // the grids' value outside their band, world units
 };
 
 // Trilinear sample of the NanoVDB float grid at byte address `grid` of `buf` at index-space point
@@ -93,8 +96,13 @@ TALLOW_FN real meltFieldValue(pnanovdb_buf_t buf, real3 p, MeltShape m) {
   real widen = sqrt(m.heightScale);
   real3 unslumped = m.anchor + real3(d.x * widen, d.y / m.heightScale, d.z * widen);
   real3 index = unslumped * m.invVoxel;
-  real body = meltGridSample(buf, m.gridA, index);
-  if (m.blend > real(0)) body = mix(body, meltGridSample(buf, m.gridB, index), m.blend);
+  // Far from every level's band the grids hold their background: skip the 8 or 16 tree reads
+  // (most of a lattice that covers every t lies there).
+  real body = m.background;
+  if (!(any(lessThan(index, m.boxLo)) || any(greaterThan(index, m.boxHi)))) {
+    body = meltGridSample(buf, m.gridA, index);
+    if (m.blend > real(0)) body = mix(body, meltGridSample(buf, m.gridB, index), m.blend);
+  }
   body = body * m.heightScale;
   if (!(m.puddleHeight > real(0))) return body;
   return meltSmoothUnion(body, meltPuddleDistance(p, m), m.joinRadius);

@@ -18,6 +18,9 @@ uniform float uMeltBlend;
 uniform float uMeltPuddleRadius;
 uniform float uMeltPuddleHeight;
 uniform float uMeltJoinRadius;
+uniform vec3 uMeltBoxLo;
+uniform vec3 uMeltBoxHi;
+uniform float uMeltBackground;
 
 float meltValueAt(vec3 p) {
   MeltShape m;
@@ -30,6 +33,9 @@ float meltValueAt(vec3 p) {
   m.puddleRadius = uMeltPuddleRadius;
   m.puddleHeight = uMeltPuddleHeight;
   m.joinRadius = uMeltJoinRadius;
+  m.boxLo = uMeltBoxLo;
+  m.boxHi = uMeltBoxHi;
+  m.background = uMeltBackground;
   pnanovdb_buf_t buf;
   buf.unused = 0u;
   return meltFieldValue(buf, p, m);
