@@ -50,7 +50,8 @@ class FieldObjects {
   /// changed for an animated field (blob, candle).
   bool stale(double timeS, int res, geometry::VertexPlacement placement) const;
   /// The lattice at t of every stale field (pass "field.sample"): a blob's filled on the GPU (the
-  /// CPU only sets uniforms and dispatches), the others sampled on the CPU and uploaded;
+  /// CPU only sets uniforms and dispatches), a melting mesh's too (its grids uploaded at its first
+  /// fill), the others sampled on the CPU and uploaded;
   /// re-attaches the extractors to `geometry` (call geometry.update afterwards).
   void sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
