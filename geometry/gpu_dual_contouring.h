@@ -1,9 +1,10 @@
 #pragma once
 // GPU dual contouring (surface nets after Gibson 1998, as the radiosity-maps paper §4 cites) of a
 // lattice of field samples in a GL_R32F 3D texture, filled either by upload() of a SampledLattice
-// sampled on the CPU (mesh fields) or on the GPU by fillOnGpu() with a compute program that
+// sampled on the CPU (still mesh fields) or on the GPU by fillOnGpu() with a compute program that
 // evaluates the field itself (the blob and the candle: GpuBlobField, GpuCandleField,
-// shaders/fields/lattice.comp; no CPU lattice, no upload). Four passes, all on the GPU:
+// shaders/fields/lattice.comp; a melting mesh: GpuMeltField, shaders/fields/mesh_melt_lattice.comp;
+// no CPU lattice, no upload). Four passes, all on the GPU:
 //   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
 //      indirect draw command (instances = active blocks);
 //   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (usually

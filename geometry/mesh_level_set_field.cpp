@@ -3,13 +3,14 @@
 #include "geometry/openvdb_support.h"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Composite.h>
-#include <openvdb/tools/GridTransformer.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/MeshToVolume.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -88,56 +89,69 @@ std::shared_ptr<const detail::LevelSetGrid> meshToGrid(const TriangleMesh& mesh,
   return grid;
 }
 
-/// The melt at fraction f of `base` (see MeshLevelSetField::melted), from scratch.
-std::shared_ptr<const detail::LevelSetGrid> melt(const openvdb::FloatGrid& base, double f, const MeltParams& p,
-                                                 double voxelSize) {
+/// Largest |difference| of face-neighbouring values of `grid`, in voxels (MeltGrids::maxSlope).
+double maxNeighbourSlope(const openvdb::FloatGrid& grid, double voxelSize) {
+  const auto accessor = grid.getConstAccessor();
+  double slope = 0.0;
+  for (auto v = grid.cbeginValueOn(); v; ++v) {
+    const openvdb::Coord c = v.getCoord();
+    for (int axis = 0; axis < 3; ++axis)
+      for (int step : {-1, 1}) {  // both sides: an active voxel may border an inactive tile either way
+        openvdb::Coord next = c;
+        next[axis] += step;
+        slope = std::max(slope, static_cast<double>(std::abs(accessor.getValue(next) - *v)));
+      }
+  }
+  return slope / voxelSize;
+}
+
+/// The static part of `base`'s melt (see MeltGrids): the anchor and extents as the CSG melt of
+/// issue 4 measured them, then the smoothing levels, each converted to NanoVDB (openToNanoVDB) and
+/// appended to one buffer at its own byte address.
+std::shared_ptr<const MeltGrids> buildMeltGrids(const openvdb::FloatGrid& base, int iterations, double voxelSize) {
+  auto out = std::make_shared<MeltGrids>();
+  MeltGrids& g = *out;
   const Aabb box = activeVoxelBounds(base);
   // The band pads the active box by its half-width on every side; the shape sits inside that.
   const double band = base.background();
-  const openvdb::Vec3d lo(box.min.x + band, box.min.y + band, box.min.z + band);
-  const openvdb::Vec3d hi(box.max.x - band, box.max.y - band, box.max.z - band);
-  const openvdb::Vec3d anchor(0.5 * (lo.x() + hi.x()), lo.y(), 0.5 * (lo.z() + hi.z()));  // bottom centre
-  const double height = std::max(hi.y() - lo.y(), voxelSize);
-  const double footprint = 0.5 * std::max(hi.x() - lo.x(), hi.z() - lo.z());
+  const glm::dvec3 lo = glm::dvec3(box.min) + band, hi = glm::dvec3(box.max) - band;
+  g.anchor = glm::dvec3(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z));  // bottom centre
+  g.height = std::max(hi.y - lo.y, voxelSize);
+  g.footprint = 0.5 * std::max(hi.x - lo.x, hi.z - lo.z);
+  g.voxelSize = voxelSize;
+  g.bandWidth = band;
+  g.smoothingIterations = iterations;
 
-  // 1. Slump about the bottom centre, volume-preserving: y × s, x and z × 1/√s. The source grid
-  //    gets the deformed transform (sharing its tree); resampleToMatch rebuilds a signed distance
-  //    on the original voxel lattice.
-  const double s = 1.0 - p.slump * f;
-  openvdb::FloatGrid::Ptr slumped;
-  if (s < 1.0) {
-    // A shallow copy: the tree is shared (and only read), the transform pointer is the copy's own.
-    openvdb::FloatGrid::Ptr deformed = openvdb::ConstPtrCast<openvdb::FloatGrid>(base.copy());
-    openvdb::math::Transform::Ptr xform = base.transform().copy();
-    xform->postTranslate(-anchor);
-    xform->postScale(openvdb::Vec3d(1.0 / std::sqrt(s), s, 1.0 / std::sqrt(s)));
-    xform->postTranslate(anchor);
-    deformed->setTransform(xform);
-    slumped = openvdb::FloatGrid::create(base.background());
-    slumped->setTransform(base.transform().copy());
-    slumped->setGridClass(openvdb::GRID_LEVEL_SET);
-    openvdb::tools::resampleToMatch<openvdb::tools::BoxSampler>(*deformed, *slumped);
-  } else {
-    slumped = base.deepCopy();
-  }
+  const int segments = std::min(iterations, MeltGrids::kMaxSmoothingSegments);
+  openvdb::FloatGrid::Ptr current = base.deepCopy();
+  int done = 0;
+  for (int k = 0; k <= segments; ++k) {
+    const int target = segments == 0 ? 0 : static_cast<int>(std::lround(static_cast<double>(iterations) * k / segments));
+    if (target > done) {
+      openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*current);
+      for (; done < target; ++done) filter.meanCurvature();
+    }
+    auto level = std::make_shared<detail::LevelSetGrid>();
+    level->grid = current->deepCopy();
+    // melt.glsl takes every level's outside for `band` beyond their active voxels.
+    if (static_cast<double>(level->grid->background()) != band)
+      throw std::logic_error("MeshLevelSetField: a smoothing level changed the background value");
+    g.levels.push_back(level);
+    g.iterations.push_back(target);
+    const Aabb levelBox = activeVoxelBounds(*level->grid);
+    g.levelBounds.extend(levelBox.min);
+    g.levelBounds.extend(levelBox.max);
+    g.maxSlope = std::max(g.maxSlope, maxNeighbourSlope(*level->grid, voxelSize));
 
-  // 2. The puddle: a disc at the base, wider and thicker as f grows, welded on by CSG union.
-  const double puddleHeight = p.puddleHeight * height * f;
-  if (puddleHeight > voxelSize) {
-    const double radius = footprint / std::sqrt(s) * (1.0 + p.puddleSpread * f);
-    auto puddle = cylinderLevelSet(radius, anchor.y(), anchor.y() + puddleHeight, slumped->transform(), anchor.x(),
-                                   anchor.z());
-    openvdb::tools::csgUnion(*slumped, *puddle);
+    const auto handle = nanovdb::openToNanoVDB(*level->grid);
+    const std::size_t address = g.nanoVdb.size() * sizeof(std::uint32_t);
+    // NanoVDB grids are 32-byte aligned and sized; GLSL addresses them with 32 bits.
+    if (handle.size() % NANOVDB_DATA_ALIGNMENT != 0 || address + handle.size() > (std::size_t{1} << 31))
+      throw std::runtime_error("MeshLevelSetField: the melt's NanoVDB grids exceed 2 GiB");
+    g.gridAddress.push_back(static_cast<std::uint32_t>(address));
+    g.nanoVdb.resize(g.nanoVdb.size() + handle.size() / sizeof(std::uint32_t));
+    std::memcpy(reinterpret_cast<unsigned char*>(g.nanoVdb.data()) + address, handle.data(), handle.size());
   }
-
-  // 3. Mean-curvature flow rounds ears, tips and edges, and blends the puddle into the body.
-  const int iterations = static_cast<int>(std::lround(p.smoothingIterations * f));
-  if (iterations > 0) {
-    openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*slumped);
-    for (int k = 0; k < iterations; ++k) filter.meanCurvature();
-  }
-  auto out = std::make_shared<detail::LevelSetGrid>();
-  out->grid = slumped;
   return out;
 }
 
@@ -148,35 +162,55 @@ MeshLevelSetField::MeshLevelSetField(const TriangleMesh& mesh, int resolution, d
                         checkedVoxelSize(mesh, resolution, bandVoxels), bandVoxels) {}
 
 MeshLevelSetField::MeshLevelSetField(std::shared_ptr<const detail::LevelSetGrid> grid, double voxelSize, double bandVoxels)
-    : LevelSetField(std::move(grid), voxelSize, bandVoxels * voxelSize), bandVoxels_(bandVoxels) {}
+    : LevelSetField(std::move(grid), voxelSize, bandVoxels * voxelSize),
+      bandVoxels_(bandVoxels),
+      meltCache_(std::make_shared<MeltCache>()) {}
 
 MeshLevelSetField::~MeshLevelSetField() = default;
 MeshLevelSetField::MeshLevelSetField(const MeshLevelSetField&) = default;
 MeshLevelSetField& MeshLevelSetField::operator=(const MeshLevelSetField&) = default;
 
+struct MeshLevelSetField::MeltCache {
+  std::mutex mutex;
+  std::map<int, std::shared_ptr<const MeltGrids>> bySmoothing;  ///< smoothing count → grids
+};
+
+std::shared_ptr<const MeltGrids> MeshLevelSetField::meltGrids(const MeltParams& params) const {
+  checkMeltParams(params, 0.0);
+  const std::lock_guard lock(meltCache_->mutex);
+  std::shared_ptr<const MeltGrids>& grids = meltCache_->bySmoothing[params.smoothingIterations];
+  if (!grids) grids = buildMeltGrids(*levelSet()->grid, params.smoothingIterations, voxelSize());
+  return grids;
+}
+
+MeltAt MeshLevelSetField::meltAt(double t, const MeltParams& params) const {
+  checkMeltParams(params, t);
+  MeltAt at;
+  at.grids = meltGrids(params);
+  at.state = meltStateAt(*at.grids, t, params);
+  return at;
+}
+
 MeshLevelSetField MeshLevelSetField::melted(double t, const MeltParams& params) const {
-  const MeltParams& p = params;
-  if (!(p.durationS > 0.0) || !(p.slump >= 0.0 && p.slump <= 0.9) || !(p.puddleSpread >= 0.0) ||
-      !(p.puddleHeight >= 0.0 && p.puddleHeight <= 1.0) || p.smoothingIterations < 0 || p.smoothingIterations > 200 ||
-      !std::isfinite(t))
-    throw std::invalid_argument("MeltParams: durationS > 0, slump in [0, 0.9], puddleSpread >= 0, puddleHeight in [0, 1], "
-                                "smoothingIterations in [0, 200], t finite");
-  const double f = std::clamp(t / p.durationS, 0.0, 1.0);
-  if (f == 0.0) return *this;
-  // The last melt of any field, so re-asking the same (field, f, params) is cheap.
-  static std::mutex mutex;
-  static std::shared_ptr<const detail::LevelSetGrid> lastBase;  // held, so its address is not reused
-  static double lastF = -1.0;
-  static MeltParams lastParams;
-  static std::shared_ptr<const detail::LevelSetGrid> last;
-  const std::lock_guard lock(mutex);
-  if (!last || lastBase != levelSet() || lastF != f || !(lastParams == p)) {
-    last = melt(*levelSet()->grid, f, p, voxelSize());
-    lastBase = levelSet();
-    lastF = f;
-    lastParams = p;
-  }
-  return MeshLevelSetField(last, voxelSize(), bandVoxels_);
+  checkMeltParams(params, t);
+  if (std::clamp(t / params.durationS, 0.0, 1.0) == 0.0) return *this;
+  const MeltAt at = meltAt(t, params);
+  MeshLevelSetField out(*this);
+  out.melt_ = at.grids;
+  out.meltState_ = at.state;
+  return out;
+}
+
+double MeshLevelSetField::value(glm::dvec3 p) const {
+  return melt_ ? meltValue(*melt_, meltState_, p) : LevelSetField::value(p);
+}
+
+Aabb MeshLevelSetField::bounds() const { return melt_ ? meltBounds(*melt_, meltState_) : LevelSetField::bounds(); }
+
+double meltLevelSampleByOpenVdb(const MeltGrids& grids, int level, glm::dvec3 p) {
+  const openvdb::FloatGrid& grid = *grids.levels.at(static_cast<std::size_t>(level))->grid;
+  const openvdb::Vec3d ijk = grid.worldToIndex(openvdb::Vec3d(p.x, p.y, p.z));
+  return static_cast<double>(openvdb::tools::BoxSampler::sample(grid.getConstUnsafeAccessor(), ijk));
 }
 
 }  // namespace tallow::geometry

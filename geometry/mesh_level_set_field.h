@@ -1,24 +1,15 @@
 #pragma once
 // Any triangle mesh as a narrow-band level set (issue 4, point 1): OpenVDB's mesh-to-volume
 // (tools::meshToLevelSet), so imported shapes go through the same path as the procedural fields,
-// and melt like the candle (melted()). OpenVDB stays inside mesh_level_set_field.cpp.
+// and melt like the candle (melted(), geometry/mesh_melt.h: the static grids built here once, the
+// melt per t evaluated by shaders/fields/melt.glsl). OpenVDB stays inside mesh_level_set_field.cpp.
 #include "geometry/level_set_field.h"
+#include "geometry/mesh_melt.h"
 #include "geometry/triangle_mesh.h"
 
+#include <memory>
+
 namespace tallow::geometry {
-
-/// How a mesh field melts over its animation, as fractions of the shape at t = 0. Every state is
-/// built from the unmelted level set by closed-form steps in the melt fraction f = t / durationS
-/// (clamped to [0, 1]), so the same t gives the same field whether the animation plays or jumps.
-struct MeltParams {
-  double durationS = 20.0;      ///< seconds until fully melted
-  double slump = 0.4;           ///< fraction of the height lost by slumping at f = 1, in [0, 0.9]
-  double puddleSpread = 0.6;    ///< puddle radius at f = 1, beyond the footprint, × footprint radius
-  double puddleHeight = 0.06;   ///< puddle thickness at f = 1 × height
-  int smoothingIterations = 12; ///< mean-curvature flow steps at f = 1 (rounds ears, tips and edges)
-
-  bool operator==(const MeltParams&) const = default;
-};
 
 class MeshLevelSetField final : public LevelSetField {
  public:
@@ -32,18 +23,36 @@ class MeshLevelSetField final : public LevelSetField {
   MeshLevelSetField(const MeshLevelSetField&);
   MeshLevelSetField& operator=(const MeshLevelSetField&);
 
-  /// The shape melted to time t (seconds): it slumps about its base (the height shrinks by
-  /// slump·f while x and z widen by 1/√(1 − slump·f), keeping the volume), a puddle spreads from its
-  /// footprint, and mean-curvature flow rounds it, with OpenVDB's resampling (resampleToMatch, which
-  /// rebuilds the signed distance), CSG union and LevelSetFilter. At t ≤ 0 it is this field. The
-  /// last result is cached, so asking for the same t again is cheap. Throws std::invalid_argument
-  /// on bad params or a non-finite t.
+  /// The shape melted to time t (seconds), see geometry/mesh_melt.h: it slumps about its base (the
+  /// height shrinks by slump·f while x and z widen by 1/√(1 − slump·f), keeping the volume), a
+  /// puddle spreads from its footprint, and it rounds as mean-curvature flow would after f·N steps.
+  /// value() evaluates shaders/fields/melt.glsl in double over meltGrids(params), which are built
+  /// at the first call and shared by every copy of this field; bounds() is meltBounds. At t ≤ 0 it
+  /// is this field. Throws std::invalid_argument on bad params or a non-finite t.
   MeshLevelSetField melted(double t, const MeltParams& params) const;
+  /// The static grids of this field's melt (OpenVDB's LevelSetFilter levels as NanoVDB grids):
+  /// built once per smoothing count, then shared by every copy and melted() field.
+  std::shared_ptr<const MeltGrids> meltGrids(const MeltParams& params) const;
+  /// The melt at t as the GPU fill takes it (the shared grids and the scalars at t).
+  MeltAt meltAt(double t, const MeltParams& params) const;
+
+  /// The unmelted level set, or the melt at t for a melted() field (melt.glsl in double).
+  double value(glm::dvec3 p) const override;
+  Aabb bounds() const override;
+
+  struct MeltCache;  ///< the grids per smoothing count, in mesh_level_set_field.cpp
 
  private:
   MeshLevelSetField(std::shared_ptr<const detail::LevelSetGrid> grid, double voxelSize, double bandVoxels);
 
   double bandVoxels_;
+  std::shared_ptr<MeltCache> meltCache_;      ///< shared by copies, so the grids are built once
+  std::shared_ptr<const MeltGrids> melt_;     ///< set on melted() fields with f > 0
+  MeltState meltState_;
 };
+
+/// OpenVDB's own trilinear sample (tools::BoxSampler) of smoothing level `level` of `grids` at world
+/// point p: a second implementation of meltLevelSample, for the tests.
+double meltLevelSampleByOpenVdb(const MeltGrids& grids, int level, glm::dvec3 p);
 
 }  // namespace tallow::geometry

@@ -10,7 +10,8 @@ struct EmbeddedFile {
   std::string_view contents;  ///< the file, byte for byte
 };
 
-/// Every file under shaders/ as it was at build time, sorted by path.
+/// Every file under shaders/ as it was at build time, sorted by path, then the files from outside
+/// shaders/ that shaders include (TALLOW_EXTRA_SHADER_FILES: nanovdb/PNanoVDB.h from libnanovdb-dev).
 std::span<const EmbeddedFile> embeddedShaderFiles();
 
 }  // namespace tallow::gpu

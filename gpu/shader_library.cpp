@@ -14,8 +14,17 @@ ShaderLibrary::ShaderLibrary(std::optional<std::filesystem::path> overrideDir)
     : overrideDir_(std::move(overrideDir)) {}
 
 std::string ShaderLibrary::read(std::string_view path) const {
+  auto embedded = [&]() -> const EmbeddedFile* {
+    for (const EmbeddedFile& f : embeddedShaderFiles())
+      if (f.path == path) return &f;
+    return nullptr;
+  };
   if (overrideDir_) {
     const std::filesystem::path file = *overrideDir_ / std::filesystem::path(path);
+    // A system header the build embedded (nanovdb/PNanoVDB.h) is not among the shaders to edit:
+    // an override folder without it still includes the embedded copy.
+    if (path.starts_with("nanovdb/") && !std::filesystem::exists(file))
+      if (const EmbeddedFile* f = embedded()) return std::string(f->contents);
     try {
       checkInputFile(file, kMaxTextFileBytes, "a shader file");
     } catch (const std::runtime_error& e) {
@@ -27,8 +36,7 @@ std::string ShaderLibrary::read(std::string_view path) const {
     text << in.rdbuf();
     return text.str();
   }
-  for (const EmbeddedFile& f : embeddedShaderFiles())
-    if (f.path == path) return std::string(f.contents);
+  if (const EmbeddedFile* f = embedded()) return std::string(f->contents);
   throw ShaderError("shaders/" + std::string(path) + ": no such shader file", "");
 }
 

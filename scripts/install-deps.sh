@@ -13,6 +13,9 @@ packages=(
   nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev libimath-dev libimgui-dev fonts-dejavu-core
   # geometry (libopenvdb-dev's headers need Boost, which it does not pull in)
   libopenvdb-dev libboost-dev libtbb-dev
+  # melting meshes on the GPU: NanoVDB (OpenVDB's GPU format, the same 10.0.1 release), whose
+  # PNanoVDB.h is compiled as GLSL (embedded into the shaders) and as C over the same grids
+  libnanovdb-dev
   # CPU ground truth
   libembree-dev
   # tests: GoogleTest, libFuzzer (clang + its runtime), a virtual display for window tests

@@ -13,6 +13,7 @@ struct FieldObjects::Entry {
   int objectIndex = 0;
   FieldSource source;  ///< the field over time and its bounds (field units, every t)
   std::unique_ptr<geometry::GpuDualContouring> dc;
+  std::unique_ptr<geometry::GpuMeltField> melt;  ///< a melting mesh's grids on the GPU, made at its first lattice
   int res = 0;
   geometry::VertexPlacement placement = geometry::kDefaultPlacement;
   double timeS = std::numeric_limits<double>::quiet_NaN();
@@ -48,11 +49,15 @@ void GpuFieldPrograms::fill(const FieldSource& source, double timeS, geometry::G
 }
 
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     GpuFieldPrograms& onGpu) {
-  // Analytic fields from their uniforms at t: no CPU lattice, no upload. Mesh fields on the CPU.
-  if (source.evaluatedOnGpu())
+                     GpuFieldPrograms& onGpu, geometry::GpuMeltField* meltOnGpu) {
+  // Analytic fields from their uniforms at t, a melting mesh from its static grids and the melt's
+  // scalars at t: no CPU lattice, no per-frame upload. Still mesh fields on the CPU.
+  if (source.evaluatedOnGpu()) {
     onGpu.fill(source, timeS, dc);
-  else
+  } else if (const std::optional<geometry::MeltAt> melt = source.meltAt(timeS)) {
+    if (!meltOnGpu) throw std::logic_error("putFieldLattice: a melting mesh field needs a GpuMeltField");
+    meltOnGpu->fill(dc, *melt, source.meltLattice(dc.samplesPerAxis()));
+  } else
     dc.upload(source.sample(timeS, dc.samplesPerAxis()));
 }
 
@@ -84,7 +89,9 @@ void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement place
     if (!e->stale(timeS, res, placement)) continue;
     if (!e->dc || e->res != res || e->placement != placement)
       e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
-    putFieldLattice(e->source, timeS, *e->dc, onGpu_);
+    if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated())
+      e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);  // its grids go up at the first fill
+    putFieldLattice(e->source, timeS, *e->dc, onGpu_, e->melt.get());
     e->res = res;
     e->placement = placement;
     e->timeS = timeS;
@@ -113,6 +120,15 @@ std::size_t FieldObjects::bytes() const {
   std::size_t n = 0;
   for (const auto& e : entries_)
     if (e->dc) n += e->dc->bufferBytes();
+  for (const auto& e : entries_)
+    if (e->melt) n += e->melt->bytes();
+  return n;
+}
+
+std::size_t FieldObjects::meltGridUploads() const {
+  std::size_t n = 0;
+  for (const auto& e : entries_)
+    if (e->melt) n += e->melt->gridUploadCount();
   return n;
 }
 

@@ -4,15 +4,17 @@
 // otherwise the last transform-feedback mesh is drawn again. The analytic fields' lattices are
 // filled on the GPU from uniforms at t — the blob's centres (geometry::GpuBlobField,
 // shaders/fields/blob.glsl), the candle's shape (geometry::GpuCandleField, shaders/fields/candle.glsl)
-// — and their normals come from their analytic gradients; mesh fields are sampled on the CPU and
-// uploaded. Each object's field, bounds and sampling come from its sss::FieldSource (shared with
-// `tallow mesh` / `field`).
+// — and their normals come from their analytic gradients; a melting mesh's from its static NanoVDB
+// grids, uploaded once, and the melt's scalars at t (geometry::GpuMeltField, shaders/fields/melt.glsl);
+// still mesh fields are sampled on the CPU and uploaded. Each object's field, bounds and sampling come
+// from its sss::FieldSource (shared with `tallow mesh` / `field`).
 #include <memory>
 #include <vector>
 
 #include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_candle_field.h"
 #include "geometry/gpu_dual_contouring.h"
+#include "geometry/gpu_melt_field.h"
 #include "geometry/scalar_field.h"
 #include "gpu/shader_library.h"
 #include "sss/scene.h"
@@ -44,9 +46,11 @@ class GpuFieldPrograms {
 };
 
 /// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: an analytic field evaluated
-/// on the GPU by `onGpu`, a mesh field sampled on the CPU and uploaded.
+/// on the GPU by `onGpu`, a melting mesh by `meltOnGpu` (its static grids uploaded at its first fill,
+/// then uniforms and one dispatch; needed for a melting mesh), a still mesh field sampled on the CPU
+/// and uploaded.
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     GpuFieldPrograms& onGpu);
+                     GpuFieldPrograms& onGpu, geometry::GpuMeltField* meltOnGpu = nullptr);
 
 class FieldObjects {
  public:
@@ -64,8 +68,8 @@ class FieldObjects {
   /// changed for an animated field (blob, candle).
   bool stale(double timeS, int res, geometry::VertexPlacement placement) const;
   /// The lattice at t of every stale field (pass "field.sample"): a blob's or a candle's filled on
-  /// the GPU (the CPU only sets uniforms and dispatches), a mesh field's sampled on the CPU and
-  /// uploaded;
+  /// the GPU (the CPU only sets uniforms and dispatches), a melting mesh's too (its grids uploaded at
+  /// its first fill), a still mesh field's sampled on the CPU and uploaded;
   /// re-attaches the extractors to `geometry` (call geometry.update afterwards).
   void sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
@@ -74,6 +78,8 @@ class FieldObjects {
   /// GPU to finish the last extraction (a stall): for stats, not for the frame loop.
   std::size_t triangleCount() const;
   std::size_t bytes() const;
+  /// Uploads of melting meshes' static grids so far (one per melting mesh per renderer).
+  std::size_t meltGridUploads() const;
 
   struct Entry;
 

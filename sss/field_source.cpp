@@ -82,8 +82,9 @@ FieldSource::FieldSource(const SceneObject& o) : parts_(std::make_unique<Parts>(
       p.bounds = p.mesh->bounds();
       if (p.melts()) {
         // Slumping widens and the puddle spreads monotonically in t, while the top only sinks:
-        // the boxes at t = 0 and fully melted hold every state between, up to what mean-curvature
-        // flow moves a concave part outward, covered by two voxels.
+        // the boxes at t = 0 and fully melted hold every state between (the melted box holds every
+        // smoothing level's), padded by two voxels as before. The melt's static grids are built
+        // here, once per preset load.
         const geometry::MeltParams melt = p.meltParams();
         const geometry::Aabb end = p.mesh->melted(melt.durationS, melt).bounds();
         p.bounds.extend(end.min);
@@ -150,6 +151,16 @@ geometry::SampledLattice FieldSource::gpuLattice(double timeS, int n) const {
     case FieldKind::Mesh: break;
   }
   throw std::logic_error("FieldSource::gpuLattice: a mesh field is sampled on the CPU");
+}
+
+std::optional<geometry::MeltAt> FieldSource::meltAt(double timeS) const {
+  if (!parts_->melts()) return std::nullopt;
+  return parts_->mesh->meltAt(timeS, parts_->meltParams());
+}
+
+geometry::SampledLattice FieldSource::meltLattice(int n) const {
+  if (!parts_->melts()) throw std::logic_error("FieldSource::meltLattice: not a melting mesh field");
+  return geometry::latticeOver(parts_->bounds, n);  // as sample() over the same box
 }
 
 }  // namespace tallow::sss

@@ -10,6 +10,7 @@
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
 #include "geometry/grid_sampler.h"
+#include "geometry/mesh_melt.h"
 #include "geometry/scalar_field.h"
 #include "geometry/triangle_mesh.h"
 #include "sss/scene.h"
@@ -56,6 +57,14 @@ class FieldSource {
   /// evaluatedOnGpu() (a blob: the box of every t; a candle: its own box at t). Throws
   /// std::logic_error for the other kinds.
   geometry::SampledLattice gpuLattice(double timeS, int n) const;
+
+  /// A melting mesh field's melt at time t (its static NanoVDB grids, built once, and the scalars
+  /// at t), which the renderer evaluates on the GPU (geometry::GpuMeltField) instead of sample();
+  /// std::nullopt for the other kinds and for a mesh that does not melt.
+  std::optional<geometry::MeltAt> meltAt(double timeS) const;
+  /// The lattice sample(t, n) fills for a melting mesh (the box of every t), without values: where
+  /// the GPU evaluates meltAt(t). Throws std::logic_error for the other kinds.
+  geometry::SampledLattice meltLattice(int n) const;
 
   struct Parts;  ///< per kind, in field_source.cpp
 

@@ -15,8 +15,9 @@ class FramePass : public Pass {
   virtual bool needed(const FrameState& state) const = 0;
 };
 
-/// field.sample: every field object at t (or at a new field.res) put on a lattice: a blob evaluated
-/// on the GPU from uniforms, the others sampled on the CPU and uploaded (FieldObjects::sample).
+/// field.sample: every field object at t (or at a new field.res) put on a lattice: a blob and a
+/// melting mesh evaluated on the GPU from uniforms (the mesh's static grids uploaded once), the
+/// others sampled on the CPU and uploaded (FieldObjects::sample).
 class FieldSamplePass final : public FramePass {
  public:
   std::string name() const override { return "field.sample"; }

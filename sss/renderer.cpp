@@ -226,6 +226,8 @@ std::size_t Renderer::triangleCount() const {
 
 std::size_t Renderer::gpuBytes() const { return target_.bytes() + geometry_.bytes() + modules_.bytes(); }
 
+const FieldObjects& Renderer::fieldObjects() const { return *modules_.find<FieldObjects>(); }
+
 const RadiosityMaps* Renderer::radiosityMaps() const { return modules_.find<RadiosityMaps>(); }
 const ImageSpaceSss* Renderer::imageSpace() const { return modules_.find<ImageSpaceSss>(); }
 const VirtualPointLights* Renderer::virtualPointLights() const { return modules_.find<VirtualPointLights>(); }

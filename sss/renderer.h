@@ -29,6 +29,7 @@ class RadiosityMaps;
 class ImageSpaceSss;
 class VirtualPointLights;
 class Sslpv;
+class FieldObjects;
 
 /// Visible pixels of translucent objects shaded from the radiosity maps, and those no map sees
 /// (Algorithm 1's n = 0: they get B = 0).
@@ -97,6 +98,8 @@ class Renderer {
   /// The radiosity maps (their light G-buffers serve no-cache too), once a frame has used them.
   const RadiosityMaps* radiosityMaps() const;
   const SceneGeometry& geometry() const { return geometry_; }
+  /// The scene's field objects (their extractors and the melting meshes' static grids on the GPU).
+  const FieldObjects& fieldObjects() const;
   /// The image-space method's passes, once a frame has used them (null before).
   const ImageSpaceSss* imageSpace() const;
   /// The VPLs of the last frame that had them (null before).

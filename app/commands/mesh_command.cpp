@@ -11,6 +11,7 @@
 #include "app/config/params.h"
 #include "geometry/cpu_mesher.h"
 #include "geometry/gpu_dual_contouring.h"
+#include "geometry/gpu_melt_field.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
 #include "sss/field_objects.h"
@@ -59,9 +60,13 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
     if (options.cpu) {
       part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
     } else {
-      // As the renderer: blob and candle evaluated on the GPU with analytic normals, meshes uploaded.
+      // As the renderer: blob and candle evaluated on the GPU with analytic normals, a melting mesh
+      // from its NanoVDB grids and the melt at t, still meshes uploaded.
+      std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
+      if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
+        meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
       const auto dc = sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement);
-      sss::putFieldLattice(f.source, options.timeS, *dc, *onGpu);
+      sss::putFieldLattice(f.source, options.timeS, *dc, *onGpu, meltOnGpu.get());
       dc->extract();
       part = dc->readBack();
     }
