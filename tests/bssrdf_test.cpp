@@ -108,6 +108,10 @@ TEST(BssrdfConfigValidation, RejectsEachInvalidFieldWithOneLine) {
   EXPECT_EQ(with([](BssrdfConfig& c) { c.sigma_s = -1; }), "sigma_s is negative (-1)");
   EXPECT_EQ(with([](BssrdfConfig& c) { c.sigma_a = c.sigma_s = 0; }),
             "sigma_a + sigma_s is 0: the medium neither scatters nor absorbs");
+  // fuzz_bssrdf_csv's find: σ_a = 0, σ_s = 1.1e-319 evaluated to NaN in every model.
+  EXPECT_EQ(with([](BssrdfConfig& c) { c.sigma_a = 0, c.sigma_s = 1e-31, c.g = 0; }),
+            "sigma_a + (1 - g) sigma_s must be at least 1e-30 /mm (1e-31)");
+  EXPECT_EQ(with([](BssrdfConfig& c) { c.sigma_a = 0, c.sigma_s = 1e-30, c.g = 0; }), "");
   EXPECT_EQ(with([](BssrdfConfig& c) { c.g = 1; }), "g is outside (-1, 1) (1)");
   EXPECT_EQ(with([](BssrdfConfig& c) { c.g = -1.5; }), "g is outside (-1, 1) (-1.5)");
   EXPECT_EQ(with([](BssrdfConfig& c) { c.eta = 0; }), "eta is not positive (0)");

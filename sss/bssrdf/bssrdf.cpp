@@ -176,6 +176,9 @@ void validateBssrdfConfig(const BssrdfConfig& c) {
   // is a kilometre) but inside what the models evaluate finitely in double precision.
   if (c.sigma_a > kMaxCoefficient || c.sigma_s > kMaxCoefficient)
     fail("sigma_a and sigma_s must be at most " + formatNumber(kMaxCoefficient) + " /mm");
+  if (!(c.sigma_a + (1.0 - c.g) * c.sigma_s >= kMinReducedExtinction))
+    fail("sigma_a + (1 - g) sigma_s must be at least " + formatNumber(kMinReducedExtinction) + " /mm (" +
+         formatNumber(c.sigma_a + (1.0 - c.g) * c.sigma_s) + ")");
   if (c.eta > kMaxEta || c.eta < 1.0 / kMaxEta)
     fail("eta must be in [" + formatNumber(1.0 / kMaxEta) + ", " + formatNumber(kMaxEta) + "]");
   for (const auto& [name, v] : vectors)

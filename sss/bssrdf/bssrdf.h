@@ -69,8 +69,11 @@ double bssrdfMagnitude(BssrdfModel model, const BssrdfConfig& config, const Bssr
 void validateBssrdfConfig(const BssrdfConfig& config);
 
 /// The input ranges validateBssrdfConfig accepts beyond the physical constraints: coefficients up
-/// to 1e6 mm⁻¹, η in [1e-3, 1e3], positions within 1e6 mm of the origin.
+/// to 1e6 mm⁻¹, a reduced extinction σ_a + (1 − g)σ_s of at least 1e-30 mm⁻¹ (a transport mean
+/// free path of 1e21 km; below about 1e-150 mm⁻¹ the models' powers of 1/σ_t' overflow double and
+/// S_d turns NaN, found by fuzz_bssrdf_csv), η in [1e-3, 1e3], positions within 1e6 mm of the origin.
 inline constexpr double kMaxCoefficient = 1e6;
+inline constexpr double kMinReducedExtinction = 1e-30;
 inline constexpr double kMaxEta = 1e3;
 inline constexpr double kMaxPosition = 1e6;
 
