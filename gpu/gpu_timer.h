@@ -19,6 +19,10 @@ struct PassTiming {
   std::string name;
   double gpuMs = std::numeric_limits<double>::quiet_NaN();  ///< NaN until the GPU's times are read
   double cpuMs = 0.0;  ///< the CPU clock's time in the pass (its own work and the commands it issued)
+  /// CPU time the rendering thread itself used in the pass (CLOCK_THREAD_CPUTIME_ID): Tallow's work
+  /// and the driver's on that thread, not time spent waiting. A software rasteriser's worker threads
+  /// (llvmpipe runs a compute dispatch on them while the caller waits) are not in it; cpuMs has the wait.
+  double threadCpuMs = 0.0;
 };
 
 class GpuTimer {

@@ -16,22 +16,23 @@ struct FieldObjects::Entry {
   std::unique_ptr<geometry::GpuMeltField> melt;  ///< a melting mesh's grids on the GPU, made at its first lattice
   int res = 0;
   geometry::VertexPlacement placement = geometry::kDefaultPlacement;
+  bool onGpu = true;  ///< field.evaluate of the last lattice
   double timeS = std::numeric_limits<double>::quiet_NaN();
   bool pending = false;  ///< sampled (uploaded or filled on the GPU), not extracted yet
   bool extracted = false;
 
   Entry(int index, const SceneObject& object) : objectIndex(index), source(object) {}
-  bool stale(double t, int r, geometry::VertexPlacement p) const {
-    return dc == nullptr || r != res || p != placement || (source.animated() && t != timeS);
+  bool stale(double t, int r, geometry::VertexPlacement p, bool gpu) const {
+    return dc == nullptr || r != res || p != placement || gpu != onGpu || (source.animated() && t != timeS);
   }
 };
 
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
                                                                 const FieldSource& source, int n,
-                                                                geometry::VertexPlacement placement) {
+                                                                geometry::VertexPlacement placement, bool onGpu) {
   geometry::NormalSource normals = geometry::NormalSource::LatticeGradient;
-  if (source.kind() == FieldKind::Blob) normals = geometry::NormalSource::BlobGradient;
-  if (source.kind() == FieldKind::Candle) normals = geometry::NormalSource::CandleGradient;
+  if (onGpu && source.kind() == FieldKind::Blob) normals = geometry::NormalSource::BlobGradient;
+  if (onGpu && source.kind() == FieldKind::Candle) normals = geometry::NormalSource::CandleGradient;
   return std::make_unique<geometry::GpuDualContouring>(shaders, n, placement, normals);
 }
 
@@ -80,20 +81,27 @@ bool FieldObjects::animated() const {
   return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->source.animated(); });
 }
 
-bool FieldObjects::stale(double timeS, int res, geometry::VertexPlacement placement) const {
-  return std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) { return e->stale(timeS, res, placement); });
+bool FieldObjects::stale(double timeS, int res, geometry::VertexPlacement placement, bool onGpu) const {
+  return std::any_of(entries_.begin(), entries_.end(),
+                     [&](const auto& e) { return e->stale(timeS, res, placement, onGpu); });
 }
 
-void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry) {
+void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement placement, bool onGpu,
+                          SceneGeometry& geometry) {
   for (auto& e : entries_) {
-    if (!e->stale(timeS, res, placement)) continue;
-    if (!e->dc || e->res != res || e->placement != placement)
-      e->dc = makeFieldExtractor(shaders_, e->source, res, placement);
-    if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated())
-      e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);  // its grids go up at the first fill
-    putFieldLattice(e->source, timeS, *e->dc, onGpu_, e->melt.get());
+    if (!e->stale(timeS, res, placement, onGpu)) continue;
+    if (!e->dc || e->res != res || e->placement != placement || e->onGpu != onGpu)
+      e->dc = makeFieldExtractor(shaders_, e->source, res, placement, onGpu);
+    if (onGpu) {
+      if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated())
+        e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);  // its grids go up at the first fill
+      putFieldLattice(e->source, timeS, *e->dc, onGpu_, e->melt.get());
+    } else {
+      e->dc->upload(e->source.sample(timeS, res));  // field.evaluate=cpu: the path before the GPU fields
+    }
     e->res = res;
     e->placement = placement;
+    e->onGpu = onGpu;
     e->timeS = timeS;
     e->pending = true;
     geometry.attachField(e->objectIndex, e->dc.get(), e->source.bounds());

@@ -25,10 +25,12 @@ namespace tallow::sss {
 class FieldSource;
 
 /// An extractor for `source` at n³ samples, as the renderer makes it: the analytic fields' vertex
-/// normals from their gradients (blob, candle), the mesh fields' from the lattice.
+/// normals from their gradients (blob, candle) when they are evaluated on the GPU (`onGpu`,
+/// field.evaluate), otherwise and for mesh fields from the lattice.
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
                                                                 const FieldSource& source, int n,
-                                                                geometry::VertexPlacement placement);
+                                                                geometry::VertexPlacement placement,
+                                                                bool onGpu = true);
 
 /// The compute programs that evaluate the analytic fields on the GPU (FieldSource::evaluatedOnGpu),
 /// each built at its first use: the one place that picks GpuBlobField or GpuCandleField by kind.
@@ -64,14 +66,15 @@ class FieldObjects {
   bool animated() const;
   bool empty() const { return entries_.empty(); }
   /// True when some field must be sampled and extracted again for time t at `res` samples per axis
-  /// with vertices placed by `placement`: nothing extracted yet, res or placement changed, or t
-  /// changed for an animated field (blob, candle).
-  bool stale(double timeS, int res, geometry::VertexPlacement placement) const;
+  /// with vertices placed by `placement` and evaluated where `onGpu` says (field.evaluate): nothing
+  /// extracted yet, res, placement or evaluation changed, or t changed for an animated field.
+  bool stale(double timeS, int res, geometry::VertexPlacement placement, bool onGpu = true) const;
   /// The lattice at t of every stale field (pass "field.sample"): a blob's or a candle's filled on
   /// the GPU (the CPU only sets uniforms and dispatches), a melting mesh's too (its grids uploaded at
-  /// its first fill), a still mesh field's sampled on the CPU and uploaded;
+  /// its first fill), a still mesh field's sampled on the CPU and uploaded; with onGpu = false
+  /// (field.evaluate=cpu) every field's sampled on the CPU and uploaded, normals from the lattice;
   /// re-attaches the extractors to `geometry` (call geometry.update afterwards).
-  void sample(double timeS, int res, geometry::VertexPlacement placement, SceneGeometry& geometry);
+  void sample(double timeS, int res, geometry::VertexPlacement placement, bool onGpu, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
   void extract();
   /// Triangles of the last extractions. Reads a transform-feedback query, so it waits for the

@@ -40,17 +40,18 @@ PassIo shadowIo(const char* written) {
 bool FieldSamplePass::needed(const FrameState& state) const { return fieldCount(state.scene) > 0; }
 
 std::string FieldSamplePass::reason(const FrameState& state) const {
-  // Blob and candle: evaluated on the GPU from uniforms (FieldSource::evaluatedOnGpu).
-  const auto blobs = std::count_if(state.scene.objects.begin(), state.scene.objects.end(), [](const SceneObject& o) {
-    return o.shape == ShapeKind::Field && (o.field.kind == FieldKind::Blob || o.field.kind == FieldKind::Candle);
+  // Blob, candle and melting meshes: evaluated on the GPU from uniforms at t (a melting mesh also
+  // reads its static grids), unless field.evaluate=cpu; a still mesh is sampled on the CPU.
+  const auto onGpu = std::count_if(state.scene.objects.begin(), state.scene.objects.end(), [&](const SceneObject& o) {
+    return state.settings.fieldOnGpu && o.shape == ShapeKind::Field && fieldAnimated(o.field);
   });
   const std::string lattice = std::to_string(state.settings.fieldRes) + "^3 lattice";
-  const auto cpu = fieldCount(state.scene) - blobs;
+  const auto cpu = fieldCount(state.scene) - onGpu;
   std::string out = std::to_string(fieldCount(state.scene)) + " field object(s) at a new time:";
-  if (blobs > 0)
-    out.append(" ").append(std::to_string(blobs)).append(" analytic field(s) evaluated on the GPU on a ").append(lattice)
+  if (onGpu > 0)
+    out.append(" ").append(std::to_string(onGpu)).append(" evaluated on the GPU on a ").append(lattice)
         .append(" (uniforms only)");
-  if (blobs > 0 && cpu > 0) out.append(";");
+  if (onGpu > 0 && cpu > 0) out.append(";");
   if (cpu > 0)
     out.append(" ").append(std::to_string(cpu)).append(" sampled on the CPU on a ").append(lattice).append(" and uploaded");
   return out;
@@ -60,14 +61,15 @@ PassIo FieldSamplePass::io(const FrameState& state) const {
   // The fields' shapes are fixed when the renderer is made (FieldObjects); only t and the lattice
   // resolution change what is sampled. The extractor, made here, holds the vertex placement. A field
   // that does not move does not read t.
-  PassIo io{{"field.res", "field.placement"}, {resource::kFieldLattice}, {}};
+  PassIo io{{"field.res", "field.placement", "field.evaluate"}, {resource::kFieldLattice}, {}};
   if (anyAnimatedField(state.scene)) io.reads.push_back("time");
   return io;
 }
 
 void FieldSamplePass::run(FrameContext& context, bool /*changed*/) {
   context.modules.find<FieldObjects>()->sample(context.state.timeS, context.settings().fieldRes,
-                                               context.settings().fieldPlacement, context.geometry);
+                                               context.settings().fieldPlacement, context.settings().fieldOnGpu,
+                                               context.geometry);
   context.geometry.update(context.scene());
 }
 

@@ -110,6 +110,10 @@ struct RenderSettings {
   int pcfRadius = 0;          ///< render.pcf_radius [texels]
   int fieldRes = 0;           ///< field.res [lattice samples per axis]
   geometry::VertexPlacement fieldPlacement = geometry::kDefaultPlacement;  ///< field.placement
+  /// field.evaluate: true (gpu) fills the blob's, the candle's and melting meshes' lattices on the
+  /// GPU from t; false (cpu) samples every field on the CPU and uploads it, normals from the lattice
+  /// (the path before issue 16, kept to measure against).
+  bool fieldOnGpu = true;
   bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
   bool flame = true;          ///< render.flame: the visible flame of a burning candle (sss/flame_pass.h)
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev

@@ -44,6 +44,7 @@ struct FrameTimings {
   std::uint64_t frame = 0;              ///< the renderer's frame number (gpu::GpuTimer)
   std::vector<gpu::PassTiming> passes;  ///< per pass that ran, in order
   double cpuTotalMs = 0.0;
+  double threadCpuTotalMs = 0.0;  ///< Σ passes' threadCpuMs
   double gpuTotalMs = std::numeric_limits<double>::quiet_NaN();  ///< NaN until resolved
   bool gpuKnown() const { return !std::isnan(gpuTotalMs); }
 };

@@ -57,7 +57,7 @@ TEST_F(FrameTimings, AFrameStillBeingRecordedHasNoTimes) {
 }
 
 TEST(FrameTimingsRenderer, RenderReturnsCpuTimesAndLeavesGpuTimesToBeRead) {
-  // The candle at a small size: a field object, sampled on the CPU each new t (pass field.sample).
+  // The candle at a small size: a field object, filled again each new t (pass field.sample).
   test::PresetSession session("candle", {"render.width=32", "render.height=24", "field.res=24", "sss.maps=2",
                                          "sss.samples=1", "sss.map_size=32", "sss.light_map_size=32"});
   sss::Renderer& renderer = session.renderer();
@@ -74,7 +74,18 @@ TEST(FrameTimingsRenderer, RenderReturnsCpuTimesAndLeavesGpuTimesToBeRead) {
     sum += p.cpuMs;
   }
   EXPECT_DOUBLE_EQ(t.cpuTotalMs, sum);
-  // Sampling a 24^3 lattice on the CPU is CPU work: it takes time on the CPU clock whatever the GPU
+  // The thread's own CPU time in a pass cannot exceed the CPU clock's span of that pass (one thread
+  // runs at most all of it); it is read a few instructions after the span ends, hence the 0.05 ms.
+  double threadSum = 0.0;
+  for (const auto& p : t.passes) {
+    EXPECT_GE(p.threadCpuMs, 0.0) << p.name;
+    EXPECT_LE(p.threadCpuMs, p.cpuMs + 0.05) << p.name;
+    threadSum += p.threadCpuMs;
+  }
+  EXPECT_DOUBLE_EQ(t.threadCpuTotalMs, threadSum);
+  EXPECT_GT(t.threadCpuTotalMs, 0.0) << "issuing a frame's commands takes the thread some CPU time";
+  // Filling a 24^3 lattice takes time on the CPU clock (uniforms and a dispatch; llvmpipe runs the
+  // shader inside it; field.evaluate=cpu samples it on the CPU) whatever the GPU
   // (a GPU timer around it measures close to nothing, which is why RESULTS showed 0.0 ms).
   const auto sample = std::find_if(t.passes.begin(), t.passes.end(), [](const auto& p) { return p.name == "field.sample"; });
   ASSERT_NE(sample, t.passes.end());

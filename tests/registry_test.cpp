@@ -152,6 +152,17 @@ TEST_F(RegistryTest, FieldPlacementIsAnEnumDefaultingToTheExtractorsDefault) {
             "field.placement: unknown value \"qfe\" (did you mean \"qef\"?); choices: qef, mass");
 }
 
+TEST_F(RegistryTest, FieldEvaluateIsGpuByDefaultAndCpuOnRequest) {
+  EXPECT_TRUE(config.render.fieldOnGpu);
+  EXPECT_EQ(registry.get(config, "field.evaluate"), "gpu");
+  EXPECT_EQ(registry.find("field.evaluate")->choices, (std::vector<std::string>{"gpu", "cpu"}));
+  registry.set(config, "field.evaluate", "cpu");
+  EXPECT_FALSE(config.render.fieldOnGpu);
+  EXPECT_EQ(registry.get(config, "field.evaluate"), "cpu");
+  EXPECT_EQ(setError("field.evaluate", "gpus"),
+            "field.evaluate: unknown value \"gpus\" (did you mean \"gpu\"?); choices: gpu, cpu");
+}
+
 TEST_F(RegistryTest, Vec3ChecksShapeAndEachComponent) {
   EXPECT_EQ(setError("ambient", json::array({1, 2})), "ambient: expected an array of 3 numbers, got [1,2]");
   EXPECT_EQ(setError("ambient", json::array({1, "2", 3})), "ambient: expected an array of 3 numbers, got [1,\"2\",3]");

@@ -64,21 +64,24 @@ nlohmann::json toJson(const RunRecord& run) {
   using nlohmann::json;
   json frames = json::array();
   std::vector<double> wall;
-  std::map<std::string, std::vector<double>> perPass, perPassCpu;
-  std::vector<double> gpuTotal, cpuTotal, changes;
+  std::map<std::string, std::vector<double>> perPass, perPassCpu, perPassThread;
+  std::vector<double> gpuTotal, cpuTotal, threadTotal, changes;
   // A GPU time not read (NaN) is null, and left out of the medians.
   const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   for (const FrameRecord& f : run.frames) {
-    json passes = json::object(), cpu = json::object();
+    json passes = json::object(), cpu = json::object(), thread = json::object();
     for (const auto& p : f.gpu.passes) {
       passes[p.name] = number(p.gpuMs);
       cpu[p.name] = p.cpuMs;
+      thread[p.name] = p.threadCpuMs;
       if (std::isfinite(p.gpuMs)) perPass[p.name].push_back(p.gpuMs);
       perPassCpu[p.name].push_back(p.cpuMs);
+      perPassThread[p.name].push_back(p.threadCpuMs);
     }
     frames.push_back({{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
                       {"gpu_ms", passes}, {"gpu_total_ms", number(f.gpu.gpuTotalMs)},
                       {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
+                      {"thread_cpu_ms", thread}, {"thread_cpu_total_ms", f.gpu.threadCpuTotalMs},
                       {"receiver_change", std::isfinite(f.receiverChange) ? json(f.receiverChange) : json(nullptr)},
                       {"point_lights", [&] {
                          json lights = json::array();
@@ -94,10 +97,12 @@ nlohmann::json toJson(const RunRecord& run) {
     wall.push_back(f.wallMs);
     if (f.gpu.gpuKnown()) gpuTotal.push_back(f.gpu.gpuTotalMs);
     cpuTotal.push_back(f.gpu.cpuTotalMs);
+    threadTotal.push_back(f.gpu.threadCpuTotalMs);
   }
-  json passMedians = json::object(), cpuMedians = json::object();
+  json passMedians = json::object(), cpuMedians = json::object(), threadMedians = json::object();
   for (auto& [name, values] : perPass) passMedians[name] = median(values);
   for (auto& [name, values] : perPassCpu) cpuMedians[name] = median(values);
+  for (auto& [name, values] : perPassThread) threadMedians[name] = median(values);
   json plan = json::array();
   for (const auto& p : run.plan)
     plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
@@ -125,6 +130,8 @@ nlohmann::json toJson(const RunRecord& run) {
         {"gpu_ms_median", passMedians},
         {"cpu_total_ms_median", median(cpuTotal)},
         {"cpu_ms_median", cpuMedians},
+        {"thread_cpu_total_ms_median", median(threadTotal)},
+        {"thread_cpu_ms_median", threadMedians},
         {"receiver_change_mean",
          changes.empty() ? json(nullptr) : json(std::accumulate(changes.begin(), changes.end(), 0.0) / double(changes.size()))}}},
       {"parameters", run.parameters},

@@ -61,12 +61,19 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
       part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
     } else {
       // As the renderer: blob and candle evaluated on the GPU with analytic normals, a melting mesh
-      // from its NanoVDB grids and the melt at t, still meshes uploaded.
-      std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
-      if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
-        meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
-      const auto dc = sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement);
-      sss::putFieldLattice(f.source, options.timeS, *dc, *onGpu, meltOnGpu.get());
+      // from its NanoVDB grids and the melt at t, still meshes uploaded; with field.evaluate=cpu
+      // every lattice sampled on the CPU and uploaded.
+      const bool fieldOnGpu = loaded.config.render.fieldOnGpu;
+      const auto dc =
+          sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement, fieldOnGpu);
+      if (fieldOnGpu) {
+        std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
+        if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
+          meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
+        sss::putFieldLattice(f.source, options.timeS, *dc, *onGpu, meltOnGpu.get());
+      } else {
+        dc->upload(f.source.sample(options.timeS, res));
+      }
       dc->extract();
       part = dc->readBack();
     }

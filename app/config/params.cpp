@@ -244,6 +244,20 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     r.add(std::move(p));
   }
 
+  {
+    Param p = withDefault(
+        declare("field.evaluate", "enum", "",
+                "Where an animated field is evaluated each frame: gpu (the blob, the candle and melting meshes by a "
+                "compute shader from t, normals from the analytic gradient; no upload) or cpu (every field sampled on "
+                "the CPU in double and uploaded, normals from the lattice: the path before the GPU fields, kept to "
+                "measure against). A mesh field that does not melt is sampled on the CPU once either way."),
+        "gpu");
+    p.choices = {"gpu", "cpu"};
+    p.getter = [](const Config& c) { return json(c.render.fieldOnGpu ? "gpu" : "cpu"); };
+    p.setter = [](Config& c, const json& v) { c.render.fieldOnGpu = v.get<std::string>() == "gpu"; };
+    r.add(std::move(p));
+  }
+
   // --- Subsurface scattering (issue 5; Dal Corso et al. 2017, "the paper" below) -----------------
   {
     Param p = withDefault(declare("method", "enum", "",

@@ -42,4 +42,35 @@ with tempfile.TemporaryDirectory() as tmp:
     assert "No GPU figures" not in text, text
     assert "Measured on **NVIDIA H200**" in text, text
     assert "\n### Device bench\n" in text and "| candle | 42 |" in text, text
+
+# Issue 16's fields section: medians over the frames after the first, the wall / GPU ratio against
+# its bound, and `splice` replacing the section in place (never twice) before the GPU section.
+import results_fields  # noqa: E402
+
+with tempfile.TemporaryDirectory() as tmp:
+    def stats(walls, gpus, sample_thread):
+        frames = [{"time_s": 12 + 0.25 * i, "wall_ms": w, "gpu_total_ms": g,
+                   "cpu_ms": {"field.sample": 1.0}, "thread_cpu_ms": {"field.sample": st, "field.extract": 0.5},
+                   "gpu_ms": {"field.sample": 0.1, "field.extract": 2.0}}
+                  for i, (w, g, st) in enumerate(zip(walls, gpus, sample_thread))]
+        return {"gl": {"GL_RENDERER": "llvmpipe (test)", "GL_VERSION": "4.5"}, "triangles": 1000, "frames": frames}
+    for evaluate, walls, gpus, st in (("cpu", [900, 200, 300, 250], [50, 100, 100, 100], [9, 80, 90, 70]),
+                                      ("gpu", [900, 120, 130, 125], [50, 100, 100, 100], [9, 0.2, 0.4, 0.3])):
+        d = results_fields.run_dir(tmp, "candle", 128, evaluate)
+        os.makedirs(d)
+        with open(os.path.join(d, "stats.json"), "w") as f:
+            json.dump(stats(walls, gpus, st), f)
+    md = os.path.join(tmp, "RESULTS.md")
+    with open(md, "w") as f:
+        f.write("# Results\n\n## Earlier\n\ntext\n\n## On a GPU (issue 18)\n\nnone\n")
+    results_fields.splice(tmp, md)
+    results_fields.splice(tmp, md)
+    text = open(md).read()
+    assert text.count(results_fields.HEADING) == 1, text
+    assert text.index("## Earlier") < text.index(results_fields.HEADING) < text.index("## On a GPU"), text
+    # cpu: wall median of 200, 300, 250 = 250, GPU 100 -> 2.500, over 1.3; gpu: 125 / 100 = 1.250, within.
+    assert "| candle | 128³ | cpu | 3 | 250.0 | 100.0 | 2.500 |" in text, text
+    assert "| candle | 128³ | gpu | 3 | 125.0 | 100.0 | 1.250 |" in text, text
+    assert "cpu / gpu = 2.00; wall / GPU 2.500 → 1.250, within the bound of 1.3" in text, text
+    assert "field.sample thread CPU 80.00 → 0.300 ms (bound 5 ms: under)" in text, text
 print("results scripts: ok")
