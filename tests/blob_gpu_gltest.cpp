@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "app/config/setup.h"
 #include "geometry/blob_field.h"
 #include "geometry/gpu_blob_field.h"
 #include "geometry/gpu_dual_contouring.h"
@@ -20,7 +19,8 @@
 #include "gpu/shader_library.h"
 #include "sss/field_source.h"
 #include "sss/renderer.h"
-#include "support/mesh_checks.h"
+#include "support/field_compare.h"
+#include "support/render_support.h"
 
 namespace tallow {
 namespace {
@@ -192,43 +192,19 @@ TEST_F(BlobGpuTest, VertexNormalsAreTheAnalyticGradientAtTheVertices) {
 
 constexpr int kRes = 48;
 
-/// A preset at a small size with a coarse lattice, its context and renderer (as field_scene_gltest).
-class PresetScene {
- public:
-  explicit PresetScene(const std::string& preset, const std::string& placement = "qef") {
-    app::SceneOptions options;
-    options.preset = preset;
-    options.sets = {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes), "sss.maps=6",
-                    "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
-                    "field.placement=" + placement};
-    loaded_ = app::loadScene(options);
-    gpu::ContextOptions contextOptions;
-    contextOptions.visible = false;
-    context_ = gpu::GlContext::create(contextOptions);
-    renderer_ = std::make_unique<sss::Renderer>(shaders_, scene(), settings());
-  }
-  const sss::Scene& scene() const { return loaded_.config.scene; }
-  const sss::RenderSettings& settings() const { return loaded_.config.render; }
-  const gpu::ShaderLibrary& shaders() const { return shaders_; }
-  sss::FrameTimings render(double t) {
-    const sss::FrameTimings timings = renderer_->render(scene(), settings(), t);
-    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-    return timings;
-  }
-  /// The field object's draw item (the first one).
-  const sss::DrawItem& fieldItem() const {
-    const auto& items = renderer_->geometry().items();
-    const auto it = std::find_if(items.begin(), items.end(), [](const sss::DrawItem& i) { return i.field != nullptr; });
-    EXPECT_NE(it, items.end());
-    return *it;
-  }
+/// The settings of a preset at a small size with a coarse lattice (as field_scene_gltest).
+std::vector<std::string> smallFieldSets(const std::string& placement = "qef") {
+  return {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes), "sss.maps=6",
+          "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
+          "field.placement=" + placement};
+}
 
- private:
-  app::LoadedScene loaded_;
-  std::unique_ptr<gpu::GlContext> context_;
-  gpu::ShaderLibrary shaders_;
-  std::unique_ptr<sss::Renderer> renderer_;
-};
+/// Renders the frame at t, expecting no GL error; returns its timings.
+sss::FrameTimings renderChecked(test::PresetSession& s, double t) {
+  const sss::FrameTimings timings = s.renderFrame(t);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  return timings;
+}
 
 double passCpuMs(const sss::FrameTimings& t, const std::string& name) {
   for (const gpu::PassTiming& p : t.passes)
@@ -251,24 +227,22 @@ class BlobGpuRendererPlacement : public ::testing::TestWithParam<const char*> {}
 TEST_P(BlobGpuRendererPlacement, BlobFramesAreFilledOnTheGpuAndMatchTheCpuSampledPath) {
   const std::string placement = GetParam();
   const double hausdorffCells = placement == "mass" ? 1e-3 : 0.05;
-  PresetScene s("blob", placement);
+  test::PresetSession s("blob", smallFieldSets(placement));
   int frames = 0;
   for (double t : {1.0, 3.95, 11.3}) {
-    const sss::FrameTimings timings = s.render(t);
+    const sss::FrameTimings timings = renderChecked(s, t);
     ++frames;
-    const sss::DrawItem& item = s.fieldItem();
-    const GpuDualContouring& rendered = *item.field;
+    const sss::DrawItem* item = test::fieldItem(s.renderer());
+    ASSERT_NE(item, nullptr);
+    const GpuDualContouring& rendered = *item->field;
     EXPECT_EQ(rendered.uploadCount(), 0u) << "a blob lattice was sampled on the CPU and uploaded";
     EXPECT_EQ(rendered.gpuFillCount(), static_cast<std::size_t>(frames));
     EXPECT_EQ(rendered.normalSource(), NormalSource::BlobGradient);
-    const geometry::TriangleMesh gpuMesh = rendered.readBack();
 
-    const sss::FieldSource source(s.scene().objects[static_cast<std::size_t>(item.objectIndex)]);
-    const SampledLattice cpuLattice = source.sample(t, kRes);
-    GpuDualContouring cpu(s.shaders(), kRes, s.settings().fieldPlacement);
-    cpu.upload(cpuLattice);
-    cpu.extract();
-    const geometry::TriangleMesh cpuMesh = cpu.readBack();
+    const sss::FieldSource source(s.scene().objects[static_cast<std::size_t>(item->objectIndex)]);
+    const test::FieldComparison c =
+        test::compareWithCpuSampledPath(rendered, source, t, kRes, s.shaders(), s.settings().fieldPlacement);
+    const SampledLattice& cpuLattice = c.cpuLattice;
 
     // Samples that may flip: within the float bound of 0 (the bound at the sample, as in test (a)).
     const BlobField blob = *source.blobAt(t);
@@ -281,16 +255,13 @@ TEST_P(BlobGpuRendererPlacement, BlobFramesAreFilledOnTheGpuAndMatchTheCpuSample
                                floatErrorBound(blob, p, latticeDq(cpuLattice, {x, y, z}, blob.params().scale)).value;
           nearZero += std::abs(blob.value(p)) <= bound ? 1 : 0;
         }
-    const double cell = cpuLattice.cellSize;
-    const double hausdorff = test::hausdorffDistance(gpuMesh, cpuMesh, cell, cell) / cell;
-    const auto difference = static_cast<long>(gpuMesh.triangles.size()) - static_cast<long>(cpuMesh.triangles.size());
     std::printf("[ blob gpu ] renderer %s t = %g at %d^3: %zu triangles (CPU path %zu), Hausdorff %.2e cells, "
                 "%d samples within the bound of 0; field.sample %.3f ms CPU (llvmpipe, not asserted)\n",
-                placement.c_str(), t, kRes, gpuMesh.triangles.size(), cpuMesh.triangles.size(), hausdorff, nearZero,
-                passCpuMs(timings, "field.sample"));
-    ASSERT_GT(cpuMesh.triangles.size(), 1000u);
-    EXPECT_LE(std::abs(difference), 24L * nearZero) << "t = " << t;
-    EXPECT_LE(hausdorff, hausdorffCells) << placement << ", t = " << t;
+                placement.c_str(), t, kRes, c.gpuMesh.triangles.size(), c.cpuMesh.triangles.size(), c.hausdorff,
+                nearZero, passCpuMs(timings, "field.sample"));
+    ASSERT_GT(c.cpuMesh.triangles.size(), 1000u);
+    EXPECT_LE(std::abs(c.triangleDifference), 24L * nearZero) << "t = " << t;
+    EXPECT_LE(c.hausdorff, hausdorffCells) << placement << ", t = " << t;
   }
 }
 
@@ -299,9 +270,11 @@ INSTANTIATE_TEST_SUITE_P(Placements, BlobGpuRendererPlacement, ::testing::Values
 // The candle goes the same way since issue 16's point 2 (tests/candle_gpu_gltest.cpp has its
 // checks): filled on the GPU from its shape at t, analytic normals, nothing uploaded.
 TEST(BlobGpuRenderer, CandleTakesTheSameGpuPath) {
-  PresetScene s("candle");
-  s.render(0.0);
-  const GpuDualContouring& rendered = *s.fieldItem().field;
+  test::PresetSession s("candle", smallFieldSets());
+  renderChecked(s, 0.0);
+  const sss::DrawItem* item = test::fieldItem(s.renderer());
+  ASSERT_NE(item, nullptr);
+  const GpuDualContouring& rendered = *item->field;
   EXPECT_EQ(rendered.uploadCount(), 0u);
   EXPECT_EQ(rendered.gpuFillCount(), 1u);
   EXPECT_EQ(rendered.normalSource(), NormalSource::CandleGradient);

@@ -26,7 +26,7 @@
 #include "gpu/gl_context.h"
 #include "gpu/shader_library.h"
 #include "sss/field_source.h"
-#include "support/mesh_checks.h"
+#include "support/field_compare.h"
 #include "support/render_support.h"
 
 namespace tallow {
@@ -202,24 +202,20 @@ TEST_P(CandleGpuRendererPlacement, CandleFramesAreFilledOnTheGpuAndMatchTheCpuSa
     s.render(t);
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
     ++frames;
-    const auto& items = s.renderer().geometry().items();
-    const auto item = std::find_if(items.begin(), items.end(), [](const sss::DrawItem& i) { return i.field != nullptr; });
-    ASSERT_NE(item, items.end());
+    const sss::DrawItem* item = test::fieldItem(s.renderer());
+    ASSERT_NE(item, nullptr);
     const GpuDualContouring& rendered = *item->field;
     EXPECT_EQ(rendered.uploadCount(), 0u) << "a candle lattice was sampled on the CPU and uploaded";
     EXPECT_EQ(rendered.gpuFillCount(), static_cast<std::size_t>(frames));
     EXPECT_EQ(rendered.normalSource(), NormalSource::CandleGradient);
-    const geometry::TriangleMesh gpuMesh = rendered.readBack();
 
     const sss::FieldSource source(s.scene().objects[static_cast<std::size_t>(item->objectIndex)]);
-    const SampledLattice cpuLattice = source.sample(t, kRes);
+    const test::FieldComparison c =
+        test::compareWithCpuSampledPath(rendered, source, t, kRes, shaders, s.settings().fieldPlacement);
+    const SampledLattice& cpuLattice = c.cpuLattice;
     const SampledLattice gpuFrame = source.gpuLattice(t, kRes);
     EXPECT_EQ(gpuFrame.origin, cpuLattice.origin);
     EXPECT_EQ(gpuFrame.cellSize, cpuLattice.cellSize);
-    GpuDualContouring cpu(shaders, kRes, s.settings().fieldPlacement);
-    cpu.upload(cpuLattice);
-    cpu.extract();
-    const geometry::TriangleMesh cpuMesh = cpu.readBack();
 
     const CandleField candle = *source.candleAt(t);
     int nearZero = 0;
@@ -230,15 +226,13 @@ TEST_P(CandleGpuRendererPlacement, CandleFramesAreFilledOnTheGpuAndMatchTheCpuSa
                               kBoundSafety * floatErrorBound(candle, cpuLattice, {x, y, z})
                           ? 1
                           : 0;
-    const double cell = cpuLattice.cellSize;
-    const double hausdorff = test::hausdorffDistance(gpuMesh, cpuMesh, cell, cell) / cell;
-    const auto difference = static_cast<long>(gpuMesh.triangles.size()) - static_cast<long>(cpuMesh.triangles.size());
     std::printf("[ candle gpu ] renderer %s t = %g at %d^3: %zu triangles (CPU path %zu), Hausdorff %.2e cells, "
                 "%d samples within the bound of 0\n",
-                placement.c_str(), t, kRes, gpuMesh.triangles.size(), cpuMesh.triangles.size(), hausdorff, nearZero);
-    ASSERT_GT(cpuMesh.triangles.size(), 1000u);
-    EXPECT_LE(std::abs(difference), 24L * nearZero) << "t = " << t;
-    EXPECT_LE(hausdorff, hausdorffCells) << placement << ", t = " << t;
+                placement.c_str(), t, kRes, c.gpuMesh.triangles.size(), c.cpuMesh.triangles.size(), c.hausdorff,
+                nearZero);
+    ASSERT_GT(c.cpuMesh.triangles.size(), 1000u);
+    EXPECT_LE(std::abs(c.triangleDifference), 24L * nearZero) << "t = " << t;
+    EXPECT_LE(c.hausdorff, hausdorffCells) << placement << ", t = " << t;
   }
 }
 

@@ -18,6 +18,7 @@
 #include "gpu/gl_context.h"
 #include "sss/field_source.h"
 #include "sss/renderer.h"
+#include "support/render_support.h"
 
 namespace tallow {
 namespace {
@@ -31,39 +32,22 @@ bool hasTiming(const sss::FrameTimings& t, const std::string& name) {
   return std::any_of(t.passes.begin(), t.passes.end(), [&](const gpu::PassTiming& p) { return p.name == name; });
 }
 
-/// One preset loaded at a small size with a coarse lattice, its context and renderer.
-class FieldScene {
- public:
-  explicit FieldScene(const std::string& preset, int res = 32) {
-    app::SceneOptions options;
-    options.preset = preset;
-    options.sets = {"render.width=" + std::to_string(kWidth), "render.height=" + std::to_string(kHeight),
-                    "field.res=" + std::to_string(res),
-                    // Small radiosity maps, converged after one frame: a frame that changes nothing
-                    // then draws exactly the same image (only step 3 runs).
-                    "sss.maps=6", "sss.samples=4", "sss.map_size=128", "sss.light_map_size=128", "sss.frames=1"};
-    loaded_ = app::loadScene(options);
-    gpu::ContextOptions contextOptions;
-    contextOptions.visible = false;
-    context_ = gpu::GlContext::create(contextOptions);
-    renderer_ = std::make_unique<sss::Renderer>(shaders_, scene(), settings());
-  }
-  const sss::Scene& scene() const { return loaded_.config.scene; }
-  const sss::RenderSettings& settings() const { return loaded_.config.render; }
-  sss::Renderer& renderer() { return *renderer_; }
-  gpu::Image render(double t, sss::FrameTimings* timings = nullptr) {
-    const sss::FrameTimings ft = renderer_->render(scene(), settings(), t);
-    if (timings) *timings = ft;
-    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-    return renderer_->readRadiance();
-  }
+/// The settings of one preset loaded at a small size with a coarse lattice.
+std::vector<std::string> fieldSceneSets(int res = 32) {
+  return {"render.width=" + std::to_string(kWidth), "render.height=" + std::to_string(kHeight),
+          "field.res=" + std::to_string(res),
+          // Small radiosity maps, converged after one frame: a frame that changes nothing
+          // then draws exactly the same image (only step 3 runs).
+          "sss.maps=6", "sss.samples=4", "sss.map_size=128", "sss.light_map_size=128", "sss.frames=1"};
+}
 
- private:
-  app::LoadedScene loaded_;
-  std::unique_ptr<gpu::GlContext> context_;
-  gpu::ShaderLibrary shaders_;
-  std::unique_ptr<sss::Renderer> renderer_;
-};
+/// Renders the frame at t, expecting no GL error; returns its linear radiance.
+gpu::Image render(test::PresetSession& s, double t, sss::FrameTimings* timings = nullptr) {
+  const sss::FrameTimings ft = s.renderFrame(t);
+  if (timings) *timings = ft;
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  return s.renderer().readRadiance();
+}
 
 void expectFinite(const gpu::Image& image) {
   ASSERT_EQ(image.width, kWidth);
@@ -85,9 +69,9 @@ int differingPixels(const gpu::Image& a, const gpu::Image& b, int x0, int y0, in
 }
 
 TEST(FieldSceneGL, BlobPresetRendersFiniteAndCountsExtractedTriangles) {
-  FieldScene s("blob");
+  test::PresetSession s("blob", fieldSceneSets());
   const std::size_t before = s.renderer().triangleCount();  // meshes only: nothing extracted yet
-  const gpu::Image image = s.render(0.0);
+  const gpu::Image image = render(s, 0.0);
   expectFinite(image);
   const std::size_t after = s.renderer().triangleCount();
   std::printf("[ field ] blob at 32^3: %zu extracted triangles\n", after - before);
@@ -95,8 +79,8 @@ TEST(FieldSceneGL, BlobPresetRendersFiniteAndCountsExtractedTriangles) {
 }
 
 TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
-  FieldScene s("candle");
-  const gpu::Image image = s.render(0.0);
+  test::PresetSession s("candle", fieldSceneSets());
+  const gpu::Image image = render(s, 0.0);
   expectFinite(image);
   EXPECT_GT(s.renderer().triangleCount(), 100u);
   // The point light of the preset follows the flame of the candle: at the end of the burn it has
@@ -123,13 +107,13 @@ TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
   EXPECT_NEAR(start.x, position.x, kFloat);
   EXPECT_NEAR(burnt.z, position.z, kFloat);
   // The candle changes as it burns: frames at the start and the end differ.
-  const gpu::Image late = s.render(scene.objects[0].field.candleDurationS);
+  const gpu::Image late = render(s, scene.objects[0].field.candleDurationS);
   expectFinite(late);
   EXPECT_GT(differingPixels(image, late, 0, 0, kWidth, kHeight), 20);
 }
 
 TEST(FieldSceneGL, BlobAnimatesAndRepeatsAfterItsPeriod) {
-  FieldScene s("blob");
+  test::PresetSession s("blob", fieldSceneSets());
   // The whole blob repeats after the least common multiple of its paths' periods.
   const geometry::BlobParams params;
   double period = 1.0;
@@ -139,9 +123,9 @@ TEST(FieldSceneGL, BlobAnimatesAndRepeatsAfterItsPeriod) {
   // ball there, at t = 2 s they have moved apart by about the ball's radius, so the centre half of
   // the image (the blob spans about a third of the view height) changes.
   const int x0 = kWidth / 4, x1 = 3 * kWidth / 4, y0 = kHeight / 4, y1 = 3 * kHeight / 4;
-  const gpu::Image a = s.render(1.0);
-  const gpu::Image b = s.render(3.0);
-  const gpu::Image c = s.render(1.0 + period);
+  const gpu::Image a = render(s, 1.0);
+  const gpu::Image b = render(s, 3.0);
+  const gpu::Image c = render(s, 1.0 + period);
   const int moved = differingPixels(a, b, x0, y0, x1, y1);
   const int repeated = differingPixels(a, c, 0, 0, kWidth, kHeight);
   std::printf("[ field ] blob: %d pixels differ between t = 1 and 3 s, %d between t = 1 and 1 + %g s\n", moved,
@@ -151,17 +135,17 @@ TEST(FieldSceneGL, BlobAnimatesAndRepeatsAfterItsPeriod) {
 }
 
 TEST(FieldSceneGL, FieldPassesRunOnlyWhenTheTimeOrResolutionChanges) {
-  FieldScene s("blob");
+  test::PresetSession s("blob", fieldSceneSets());
   EXPECT_TRUE(hasPass(sss::Renderer::plan(s.scene(), s.settings()), "field.extract"));
   EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.sample"));
   EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.extract"));
   sss::FrameTimings first, second, third;
-  const gpu::Image a = s.render(0.5, &first);
+  const gpu::Image a = render(s, 0.5, &first);
   EXPECT_TRUE(hasTiming(first, "field.sample"));
   EXPECT_TRUE(hasTiming(first, "field.extract"));
   EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.extract"));
   EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), s.settings(), 0.5), "field.sample"));
-  const gpu::Image b = s.render(0.5, &second);
+  const gpu::Image b = render(s, 0.5, &second);
   EXPECT_FALSE(hasTiming(second, "field.extract"));
   EXPECT_TRUE(hasTiming(second, "surface"));
   // The translucent blob's maps were computed in the first frame and are converged (sss.frames = 1).
@@ -185,9 +169,9 @@ TEST(FieldSceneGL, MeshFieldRendersTheBunnyThroughTheLevelSetPath) {
   "lights": [{"type": "directional", "direction": [0, 1, 1], "irradiance": [3, 3, 3]}],
   "objects": [{"field": {"type": "mesh", "mesh": "data:bunny.ply"}, "scale": 0.1}]})";
   }
-  FieldScene s(path);
+  test::PresetSession s(path, fieldSceneSets());
   EXPECT_EQ(s.scene().objects[0].shape, sss::ShapeKind::Field);
-  const gpu::Image image = s.render(0.0);
+  const gpu::Image image = render(s, 0.0);
   expectFinite(image);
   EXPECT_GT(s.renderer().triangleCount(), 100u);
   int lit = 0;  // the bunny (about a third of the view) against a black background

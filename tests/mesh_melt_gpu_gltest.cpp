@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "app/config/setup.h"
 #include "geometry/gpu_dual_contouring.h"
 #include "geometry/gpu_melt_field.h"
 #include "geometry/grid_sampler.h"
@@ -25,7 +24,9 @@
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/renderer.h"
+#include "support/field_compare.h"
 #include "support/mesh_checks.h"
+#include "support/render_support.h"
 #include "support/temp_dir.h"
 
 namespace tallow {
@@ -182,46 +183,26 @@ TEST_F(MeshMeltGpuTest, NanoVdbSampleIsOpenVdbsTrilinearSampleOfTheSameGrid) {
 
 constexpr int kRes = 48;
 
-/// A preset with the melting bunny at a small size with a coarse lattice (as blob_gpu_gltest).
-class MeltingScene {
- public:
-  explicit MeltingScene(const std::string& placement) {
-    const auto preset = dir_.write("melting.json", R"({"camera": {"position": [0, 0.06, 0.3], "target": [0, 0.04, 0]},
+/// Writes a preset with the melting bunny into `dir`; returns its path.
+std::string meltingPreset(const test::TempDir& dir) {
+  return dir.write("melting.json", R"({"camera": {"position": [0, 0.06, 0.3], "target": [0, 0.04, 0]},
       "lights": [{"type": "directional", "direction": [0, 1, 1], "irradiance": [3, 3, 3]}],
-      "objects": [{"field": {"type": "mesh", "mesh": "data:bunny.ply", "melt_s": 10}, "scale": 0.1}]})");
-    app::SceneOptions options;
-    options.preset = preset.string();
-    options.sets = {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes), "sss.maps=6",
-                    "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
-                    "field.placement=" + placement};
-    loaded_ = app::loadScene(options);
-    gpu::ContextOptions contextOptions;
-    contextOptions.visible = false;
-    context_ = gpu::GlContext::create(contextOptions);
-    renderer_ = std::make_unique<sss::Renderer>(shaders_, scene(), settings());
-  }
-  const sss::Scene& scene() const { return loaded_.config.scene; }
-  const sss::RenderSettings& settings() const { return loaded_.config.render; }
-  const gpu::ShaderLibrary& shaders() const { return shaders_; }
-  const sss::Renderer& renderer() const { return *renderer_; }
-  void render(double t) {
-    renderer_->render(scene(), settings(), t);
-    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-  }
-  const sss::DrawItem& fieldItem() const {
-    const auto& items = renderer_->geometry().items();
-    const auto it = std::find_if(items.begin(), items.end(), [](const sss::DrawItem& i) { return i.field != nullptr; });
-    EXPECT_NE(it, items.end());
-    return *it;
-  }
+      "objects": [{"field": {"type": "mesh", "mesh": "data:bunny.ply", "melt_s": 10}, "scale": 0.1}]})")
+      .string();
+}
 
- private:
-  test::TempDir dir_;
-  app::LoadedScene loaded_;
-  std::unique_ptr<gpu::GlContext> context_;
-  gpu::ShaderLibrary shaders_;
-  std::unique_ptr<sss::Renderer> renderer_;
-};
+/// The settings of that preset at a small size with a coarse lattice (as blob_gpu_gltest).
+std::vector<std::string> smallFieldSets(const std::string& placement) {
+  return {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes), "sss.maps=6",
+          "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
+          "field.placement=" + placement};
+}
+
+/// Renders the frame at t, expecting no GL error.
+void renderChecked(test::PresetSession& s, double t) {
+  s.renderFrame(t);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
 
 // (c) The renderer's melting frames come from the GPU fill and extract the mesh of the CPU-sampled
 // path at the same t: the same lattice up to the float bound of (a), so the same triangles except
@@ -235,7 +216,8 @@ class MeltGpuRendererPlacement : public ::testing::TestWithParam<const char*> {}
 TEST_P(MeltGpuRendererPlacement, MeltingFramesAreFilledOnTheGpuAndMatchTheCpuSampledPath) {
   const std::string placement = GetParam();
   const double hausdorffCells = placement == "mass" ? 1e-3 : 0.05;
-  MeltingScene s(placement);
+  const test::TempDir dir;
+  test::PresetSession s(meltingPreset(dir), smallFieldSets(placement));
   const auto& objects = s.scene().objects;
   const auto field = std::find_if(objects.begin(), objects.end(),
                                   [](const sss::SceneObject& o) { return o.shape == sss::ShapeKind::Field; });
@@ -243,19 +225,17 @@ TEST_P(MeltGpuRendererPlacement, MeltingFramesAreFilledOnTheGpuAndMatchTheCpuSam
   const sss::FieldSource source(*field);  // the CPU path's own (its grids built again)
   int frames = 0;
   for (double t : {2.0, 5.0, 10.0}) {
-    s.render(t);
+    renderChecked(s, t);
     ++frames;
-    const sss::DrawItem& item = s.fieldItem();
-    const GpuDualContouring& rendered = *item.field;
+    const sss::DrawItem* item = test::fieldItem(s.renderer());
+    ASSERT_NE(item, nullptr);
+    const GpuDualContouring& rendered = *item->field;
     EXPECT_EQ(rendered.uploadCount(), 0u) << "a melting lattice was sampled on the CPU and uploaded";
     EXPECT_EQ(rendered.gpuFillCount(), static_cast<std::size_t>(frames));
-    const geometry::TriangleMesh gpuMesh = rendered.readBack();
 
-    const SampledLattice cpuLattice = source.sample(t, kRes);
-    GpuDualContouring cpu(s.shaders(), kRes, s.settings().fieldPlacement);
-    cpu.upload(cpuLattice);
-    cpu.extract();
-    const geometry::TriangleMesh cpuMesh = cpu.readBack();
+    const test::FieldComparison c =
+        test::compareWithCpuSampledPath(rendered, source, t, kRes, s.shaders(), s.settings().fieldPlacement);
+    const SampledLattice& cpuLattice = c.cpuLattice;
 
     const MeltAt at = *source.meltAt(t);
     int nearZero = 0;
@@ -265,17 +245,15 @@ TEST_P(MeltGpuRendererPlacement, MeltingFramesAreFilledOnTheGpuAndMatchTheCpuSam
           nearZero += std::abs(cpuLattice.at(x, y, z)) <= kBoundSafety * floatBound(*at.grids, at.state, cpuLattice, {x, y, z})
                           ? 1
                           : 0;
-    const double cell = cpuLattice.cellSize;
-    const double hausdorff = test::hausdorffDistance(gpuMesh, cpuMesh, cell, cell) / cell;
-    const auto difference = static_cast<long>(gpuMesh.triangles.size()) - static_cast<long>(cpuMesh.triangles.size());
     std::printf("[ melt gpu ] renderer %s t = %g at %d^3: %zu triangles (CPU path %zu), Hausdorff %.2e cells, "
                 "%d samples within the bound of 0\n",
-                placement.c_str(), t, kRes, gpuMesh.triangles.size(), cpuMesh.triangles.size(), hausdorff, nearZero);
-    ASSERT_GT(cpuMesh.triangles.size(), 1000u);
-    EXPECT_EQ(test::badEdges(gpuMesh), 0) << "t = " << t;
-    EXPECT_GT(test::signedVolume(gpuMesh), 0.0) << "t = " << t;
-    EXPECT_LE(std::abs(difference), 24L * nearZero) << "t = " << t;
-    EXPECT_LE(hausdorff, hausdorffCells) << placement << ", t = " << t;
+                placement.c_str(), t, kRes, c.gpuMesh.triangles.size(), c.cpuMesh.triangles.size(), c.hausdorff,
+                nearZero);
+    ASSERT_GT(c.cpuMesh.triangles.size(), 1000u);
+    EXPECT_EQ(test::badEdges(c.gpuMesh), 0) << "t = " << t;
+    EXPECT_GT(test::signedVolume(c.gpuMesh), 0.0) << "t = " << t;
+    EXPECT_LE(std::abs(c.triangleDifference), 24L * nearZero) << "t = " << t;
+    EXPECT_LE(c.hausdorff, hausdorffCells) << placement << ", t = " << t;
   }
 }
 
@@ -284,16 +262,19 @@ INSTANTIATE_TEST_SUITE_P(Placements, MeltGpuRendererPlacement, ::testing::Values
 // (d) The static grids reach the GPU once per preset load: one upload at the first frame, none for
 // the frames after (new t, the same t again, back in time), and no lattice is ever uploaded.
 TEST(MeltGpuRenderer, StaticGridsAreUploadedOnceAndNothingPerFrame) {
-  MeltingScene s("mass");
+  const test::TempDir dir;
+  test::PresetSession s(meltingPreset(dir), smallFieldSets("mass"));
   EXPECT_EQ(s.renderer().fieldObjects().meltGridUploads(), 0u);
   const double times[] = {0.0, 1.0, 4.0, 4.0, 9.5, 2.0, 30.0};
   for (std::size_t i = 0; i < std::size(times); ++i) {
-    s.render(times[i]);
+    renderChecked(s, times[i]);
     EXPECT_EQ(s.renderer().fieldObjects().meltGridUploads(), 1u) << "after frame " << i;
-    EXPECT_EQ(s.fieldItem().field->uploadCount(), 0u) << "after frame " << i;
+    const sss::DrawItem* item = test::fieldItem(s.renderer());
+    ASSERT_NE(item, nullptr) << "after frame " << i;
+    EXPECT_EQ(item->field->uploadCount(), 0u) << "after frame " << i;
   }
   // The same t twice is not filled again (the field is not stale): 6 fills for 7 frames.
-  EXPECT_EQ(s.fieldItem().field->gpuFillCount(), std::size(times) - 1);
+  EXPECT_EQ(test::fieldItem(s.renderer())->field->gpuFillCount(), std::size(times) - 1);
 }
 
 }  // namespace

@@ -45,6 +45,8 @@ gpu::Image PresetSession::render(double timeS, sss::FrameTimings* timings) {
   return image;
 }
 
+sss::FrameTimings PresetSession::renderFrame(double timeS) { return renderer_->render(scene(), settings(), timeS); }
+
 std::string testScene(const std::string& name) {
   return std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/" + name + ".json";
 }

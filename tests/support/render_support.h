@@ -7,6 +7,7 @@
 #include "app/config/setup.h"
 #include "gpu/gl_context.h"
 #include "gpu/image.h"
+#include "gpu/shader_library.h"
 #include "sss/renderer.h"
 
 namespace tallow::test {
@@ -28,10 +29,18 @@ class PresetSession {
   explicit PresetSession(const std::string& preset, const std::vector<std::string>& sets = {},
                          gpu::GlBackend backend = gpu::GlBackend::OsMesa);
   sss::Scene& scene() { return loaded_.config.scene; }
+  const sss::Scene& scene() const { return loaded_.config.scene; }
   sss::RenderSettings& settings() { return loaded_.config.render; }
+  const sss::RenderSettings& settings() const { return loaded_.config.render; }
   sss::Renderer& renderer() { return *renderer_; }
+  const sss::Renderer& renderer() const { return *renderer_; }
+  /// The library the renderer's programs come from, for a test's own GPU passes in this context.
+  const gpu::ShaderLibrary& shaders() const { return shaders_; }
   /// Renders the frame at time t; returns its linear radiance.
   gpu::Image render(double timeS = 0.0, sss::FrameTimings* timings = nullptr);
+  /// Renders the frame at time t without reading anything back; returns its timings as the
+  /// renderer gives them (GPU times not resolved).
+  sss::FrameTimings renderFrame(double timeS = 0.0);
 
  private:
   app::LoadedScene loaded_;
