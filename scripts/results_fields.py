@@ -31,7 +31,7 @@ SAMPLE_CPU_BOUND_MS = 5.0  # issue 16: the geometry's CPU work per animated fram
 
 
 def frames_for(quick):
-    return 3 if quick else 7
+    return 3 if quick else 6
 
 
 def run_dir(work, field, res, evaluate):
