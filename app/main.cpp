@@ -91,6 +91,8 @@ int main(int argc, char** argv) {
   captureCmd->add_flag("--exr-float", capture.exrFloat, "write 32-bit float EXR channels instead of half");
   captureCmd->add_option("--script", capture.script, "timed parameter changes, e.g. `frame 5 set sss.maps=8` (docs/view.md)");
   captureCmd->add_option("--video", capture.video, "also encode the frames into a video with ffmpeg (.mp4, .mov, .mkv, .webm)");
+  captureCmd->add_option("--reference", capture.reference,
+                         "REF.exr from `tallow reference` (REF_stderr.exr beside it): each frame's error against it in stats.json");
 
   tallow::app::ReferenceOptions reference;
   auto* referenceCmd = app.add_subcommand("reference", "CPU ground truth (Embree, TBB): the capture image by Monte Carlo integration of the BSSRDF");

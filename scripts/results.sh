@@ -8,7 +8,8 @@
 # issue-8 comparison of the four methods (radiosity maps, no-cache, SSLPV, image-space); and of
 # `tallow probe placement` (issue 16, point 4: dual contouring's vertex placements against the exact
 # surface, scripts/results_placement.py) and of `tallow capture` on the animated candle and blob with
-# the fields evaluated on the CPU and on the GPU (issue 16, point 7, scripts/results_fields.py). Every
+# the fields evaluated on the CPU and on the GPU (issue 16, point 7, scripts/results_fields.py) and
+# with the maps restarted or kept while they move (issue 17, point 3, scripts/results_history.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -50,6 +51,9 @@ done
 TALLOW="$tallow" python3 "$root/scripts/results_bench.py" run "$work/bench" ${quick:+--quick}
 # Issue 16, point 7: the animated candle and blob, CPU-evaluated (the path before) against GPU fields.
 TALLOW="$tallow" python3 "$root/scripts/results_fields.py" run "$work/fields" ${quick:+--quick}
+# Issue 17, point 3: frame k of the animated blob and candle against the reference at t_k, the maps
+# restarted at every frame against kept per texel (sss.history).
+TALLOW="$tallow" python3 "$root/scripts/results_history.py" run "$work/history" ${quick:+--quick}
 
 python3 - "$work/extraction.json" "$root/docs/RESULTS.md.tmp" "$repeats" "$(nproc 2>/dev/null || echo '?')" "$work/maps.json" "$work/gather_fragment.json" "$work/gather_compute.json" <<'PY'
 import json, sys, datetime, platform
@@ -212,6 +216,7 @@ PY
 python3 "$root/scripts/results_bench.py" report "$work/bench" "$root/docs/RESULTS.md.tmp" "$root/docs/images/results"
 python3 "$root/scripts/results_placement.py" "$work/placement.json" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_fields.py" report "$work/fields" "$root/docs/RESULTS.md.tmp"
+python3 "$root/scripts/results_history.py" report "$work/history" "$root/docs/RESULTS.md.tmp"
 # Issue 18: a GPU run of the device bench, copied into docs/gpu/, or the statement that none exists.
 python3 "$root/scripts/results_bench.py" gpu "$root/docs/gpu" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"

@@ -19,6 +19,9 @@ import statistics
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results_sections  # noqa: E402
+
 FIELDS = ("candle", "blob")
 RESOLUTIONS = (64, 128, 256)
 EVALUATIONS = ("cpu", "gpu")
@@ -182,26 +185,12 @@ def section(work):
 
 
 def report(work, md):
-    with open(md, "a") as f:
-        f.write("\n".join(section(work)) + "\n")
+    results_sections.append(md, section(work))
 
 
 def splice(work, md):
-    """Replaces this section of MD (from its heading to the next `## `), or inserts it before the GPU
-    section (`## On a GPU`) or at the end; written to MD.tmp, then renamed."""
-    with open(md) as f:
-        text = f.read().split("\n")
-    new = section(work)
-    if HEADING in text:
-        start = text.index(HEADING)
-        end = next((i for i in range(start + 1, len(text)) if text[i].startswith("## ")), len(text))
-    else:
-        start = next((i for i, line in enumerate(text) if line.startswith("## On a GPU")), len(text))
-        end = start
-    out = text[:start] + new + text[end:]
-    with open(md + ".tmp", "w") as f:
-        f.write("\n".join(out))
-    os.replace(md + ".tmp", md)
+    """Replaces this section of MD, or inserts it before the GPU section (results_sections.splice)."""
+    results_sections.splice(md, HEADING, section(work))
 
 
 def main(argv):

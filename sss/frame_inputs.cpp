@@ -60,6 +60,8 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("sss.comb", [](S s) { return s.sss.comb; }));
     t.push_back(setting("sss.view_weight", [](S s) { return s.sss.viewWeight; }));
     t.push_back(setting("sss.frames", [](S s) { return s.sss.frames; }));
+    t.push_back(setting("sss.history", [](S s) { return s.sss.history; }));
+    t.push_back(setting("sss.history_move", [](S s) { return s.sss.historyMove; }));
     t.push_back(setting("sss.light_map_auto", [](S s) { return s.sss.lightMapAuto; }));
     t.push_back(setting("sss.projected_area", [](S s) { return s.sss.projectedArea; }));
     t.push_back(setting("sss.texel_plane", [](S s) { return s.sss.texelPlane; }));

@@ -82,12 +82,15 @@ std::size_t lightGBufferBytes(int directional, int point, int size) {
   return bytes;
 }
 
-std::size_t radiosityMapBytes(int k, int size, bool computeGather) {
+std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history) {
   if (k <= 0) return 0;
   // The full mip chain: floor(log2 size) + 1 levels (radiosity_maps.cpp, mipLevels).
   const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(size)));
   std::size_t bytes = layers2D(GL_RGBA32F, size, k, levels) + layers2D(GL_DEPTH_COMPONENT32F, size, k);
-  if (computeGather) bytes += 2 * layers2D(GL_RGBA32F, size, k);
+  // The maps' G-buffer (position, normal): the compute gather's input and the history's; the
+  // history keeps the last frame's as well.
+  if (computeGather || history) bytes += 2 * layers2D(GL_RGBA32F, size, k);
+  if (history) bytes += 2 * layers2D(GL_RGBA32F, size, k);
   return bytes;
 }
 
@@ -158,7 +161,7 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
   if (RadiosityMaps::applies(scene, settings)) {
     const int k = mapCount(scene, settings);
     add("radiosity maps", "sss.maps=" + std::to_string(k) + " × " + square("sss.map_size", s.mapSize),
-        radiosityMapBytes(k, s.mapSize, s.computeGather));
+        radiosityMapBytes(k, s.mapSize, s.computeGather, s.history > 0));
   }
   if (VirtualPointLights::applies(scene, settings)) {
     const VplSettings& v = settings.vpl;

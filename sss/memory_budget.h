@@ -35,9 +35,10 @@ std::size_t shadowMapBytes(const Scene& scene, const RenderSettings& settings);
 /// Light G-buffers (position, normal: RGBA32F; depth: 32F) of `directional` orthographic layers
 /// and `point` cubes, `size`² texels per layer or face.
 std::size_t lightGBufferBytes(int directional, int point, int size);
-/// K scattered radiosity maps of size²: RGBA32F with the full mip chain, depth, and with the
-/// compute gather (sss.gather) the maps' own G-buffer (position, normal).
-std::size_t radiosityMapBytes(int k, int size, bool computeGather);
+/// K scattered radiosity maps of size²: RGBA32F with the full mip chain, depth, with the compute
+/// gather (sss.gather) or the history (sss.history > 0) the maps' own G-buffer (position, normal),
+/// and with the history the last frame's G-buffer as well.
+std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history);
 /// The virtual point lights without their shadow maps: the outermost-surface cube (position,
 /// normal, depth), the records, the directions and the cube's face views.
 std::size_t vplBytes(const VplSettings& vpl);

@@ -106,6 +106,8 @@ struct FrameContext {
   const std::vector<const TranslucencyMethod*>& methods;
   /// Frames the camera pass drew since the accumulation began: seeds the no-cache gather.
   int cameraFrame = 0;
+  /// Renderer::invalidate() before this frame: every pass runs as if it never ran (no history kept).
+  bool invalidated = false;
   const Scene& scene() const { return state.scene; }
   const RenderSettings& settings() const { return state.settings; }
   /// The scene camera for the target's aspect ratio, fitted to the geometry's bounds.

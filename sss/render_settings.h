@@ -28,6 +28,13 @@ struct SssSettings {
   float comb = 0.0f;          ///< sss.comb: ε_comb [× the translucent objects' bounding radius]
   float viewWeight = 0.0f;    ///< sss.view_weight: p of Algorithm 1's per-map weight cos^p θ (0: the paper)
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
+  /// sss.history: when the geometry or the lights move, each map texel whose surface point and
+  /// normal still hold keeps at most this many frames of its accumulated estimate (the rest is
+  /// reset); 0 restarts the maps (the paper). shaders/maps/history.glsl, issue 17.
+  int history = 8;
+  /// sss.history_move: how far a texel's surface point may move for it to keep its history, in
+  /// units of the shortest diffusion length 1/σ_tr of the translucent materials.
+  float historyMove = 0.5f;
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
   /// sss.point_share: the share of point-light samples drawn from the stereographic density about
   /// the light instead of Eq. 12 (shaders/maps/estimator.glsl, issue 17); 0: Eq. 12 alone (the

@@ -134,6 +134,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   t.frame = timer_.beginFrame();
   const FrameState state{scene, settings, timeS, accumulation_};
   FrameContext context{state, shaders_, geometry_, modules_, target_, plan_.method(state), plan_.methods()};
+  context.invalidated = forget_;
   std::map<std::string, Stamp> before = resources_;
   for (const auto& [pass, d] : schedule(state, resources_)) {
     {

@@ -135,7 +135,7 @@ TEST(HardeningMemory, TheIssuesExampleCountsEveryBuffer) {
   const std::size_t mipChain = (std::size_t{1} << 20) / 3;  // 512² + 256² + … + 1 = (4^10 − 1)/3
   const std::size_t maps = 16 * (mipChain * 16 + texels * 4 + texels * 2 * 16);
   const std::size_t gbuffer = texels * (2 * 16 + 4);
-  EXPECT_EQ(sss::radiosityMapBytes(16, 512, true), maps);
+  EXPECT_EQ(sss::radiosityMapBytes(16, 512, true, false), maps);
   EXPECT_EQ(sss::lightGBufferBytes(1, 0, 512), gbuffer);
   EXPECT_NEAR(static_cast<double>(maps + gbuffer) / 1e6, 250.0, 0.5);
   // VPL shadow maps at their largest: 64 cubes of 2048², the issue's 6.4 GB.

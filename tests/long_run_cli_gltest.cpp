@@ -255,5 +255,69 @@ TEST_F(LongBench, SigintDuringItsReferenceWritesThePassesDone) {
   EXPECT_EQ(hiddenFiles(dir.path()), std::vector<std::string>{});
 }
 
+// capture --reference (issue 17, point 3): every frame's error against one reference in stats.json,
+// checked here against references whose answer is known: the capture's own frame (error 0 up to the
+// EXR's half floats) and that frame doubled (mean ratio 1/2, relative RMSE 1/2); plus the
+// translucent pixels' frame-to-frame change, and one line for a reference of another size.
+TEST(CaptureReference, EachFrameIsComparedWithTheReferenceAndTheTranslucentChangeIsRecorded) {
+  test::TempDir dir;
+  const std::vector<std::string> scene = {"capture", "--preset", "slab", "--size", "64x48", "--set", "sss.maps=4",
+                                          "--set", "sss.map_size=64", "--set", "sss.light_map_size=64", "--frames", "2"};
+  const auto withOut = [&](const fs::path& out, std::vector<std::string> extra) {
+    std::vector<std::string> args = scene;
+    args.insert(args.end(), {"--out", out.string()});
+    args.insert(args.end(), extra.begin(), extra.end());
+    return runTallow(args);
+  };
+  const fs::path first = dir.path() / "first";
+  auto r = withOut(first, {"--exr-float"});  // the reference below is this frame, bit for bit
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  json stats = readJson(first / "stats.json");
+  EXPECT_TRUE(stats["frames"][0]["translucent_change"].is_null()) << "no frame before the first";
+  ASSERT_TRUE(stats["frames"][1]["translucent_change"].is_number());
+  // The slab is still: the second frame accumulates the maps further, a small change, not none.
+  EXPECT_GT(stats["frames"][1]["translucent_change"].get<double>(), 0.0);
+  EXPECT_LT(stats["frames"][1]["translucent_change"].get<double>(), 0.5);
+  EXPECT_TRUE(stats["frames"][1]["reference_error"].is_null()) << "no --reference";
+
+  // The first run's second frame as the reference, every pixel marked as the object's.
+  const gpu::Image frame = gpu::readExr(first / "frame_0001.exr");
+  gpu::Image mask(frame.width, frame.height);
+  for (auto& p : mask.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  gpu::Image doubled = frame;
+  for (auto& p : doubled.pixels) p = glm::vec4(2.0f * glm::vec3(p), p.a);
+  gpu::writeExr(dir.path() / "same.exr", frame, gpu::ExrPixelType::Float, {});
+  gpu::writeExr(dir.path() / "same_stderr.exr", mask, gpu::ExrPixelType::Float, {});
+  gpu::writeExr(dir.path() / "doubled.exr", doubled, gpu::ExrPixelType::Float, {});
+  gpu::writeExr(dir.path() / "doubled_stderr.exr", mask, gpu::ExrPixelType::Float, {});
+
+  r = withOut(dir.path() / "same", {"--reference", (dir.path() / "same.exr").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  stats = readJson(dir.path() / "same" / "stats.json");
+  const json& same = stats["frames"][1]["reference_error"];
+  ASSERT_TRUE(same.is_object()) << stats["frames"][1].dump();
+  EXPECT_EQ(same["pixels"], 64 * 48);
+  EXPECT_LT(same["rel_rmse"].get<double>(), 1e-6) << "the same render (llvmpipe is deterministic)";
+  EXPECT_NEAR(same["mean_ratio"].get<double>(), 1.0, 1e-6);
+  EXPECT_GT(stats["frames"][0]["reference_error"]["rel_rmse"].get<double>(), 0.0) << "frame 1 has fewer frames";
+
+  r = withOut(dir.path() / "doubled", {"--reference", (dir.path() / "doubled.exr").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const json doubledError = readJson(dir.path() / "doubled" / "stats.json")["frames"][1]["reference_error"];
+  EXPECT_NEAR(doubledError["mean_ratio"].get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(doubledError["upper_mean_ratio"].get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(doubledError["lower_mean_ratio"].get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(doubledError["rel_rmse"].get<double>(), 0.5, 1e-6) << "|x − 2x| / RMS(2x)";
+
+  // Another size: one line, nothing rendered.
+  const fs::path wrong = dir.path() / "wrong";
+  r = runTallow({"capture", "--preset", "slab", "--size", "32x24", "--out", wrong.string(), "--reference",
+                 (dir.path() / "same.exr").string()});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("is 64x48 but the capture renders 32x24"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(wrong / "stats.json"));
+}
+
 }  // namespace
 }  // namespace tallow

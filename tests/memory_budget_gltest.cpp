@@ -55,7 +55,8 @@ TEST_P(MemoryBudget, FiguresEqualTheBytesOfTheAllocatedObjects) {
   if (maps && sss::RadiosityMaps::needsLightGBuffers(scene, settings)) {
     const int k = sss::RadiosityMaps::applies(scene, settings) ? sss::mapCount(scene, settings) : 0;
     EXPECT_EQ(maps->bytes(), sss::lightGBufferBytes(dir, point, lightMapSize) +
-                                 sss::radiosityMapBytes(k, settings.sss.mapSize, settings.sss.computeGather));
+                                 sss::radiosityMapBytes(k, settings.sss.mapSize, settings.sss.computeGather,
+                                                         settings.sss.history > 0));
   }
   if (const sss::VirtualPointLights* vpls = renderer.virtualPointLights()) {
     EXPECT_EQ(vpls->bytes(), sss::vplBytes(settings.vpl) + sss::vplShadowBytes(settings.vpl));

@@ -153,32 +153,13 @@ void checkOptions(const BenchOptions& o) {
   checkTime("--time", o.timeS);
 }
 
-gpu::Image readReferenceImage(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw InputError("--reference: " + file.string() + " does not exist");
-  try {
-    return gpu::readExr(file);
-  } catch (const std::exception& e) {
-    std::string line = "--reference: ";
-    line += e.what();
-    throw InputError(line);
-  }
-}
-
 /// --reference REF.exr and REF_stderr.exr (with --receivers also REF_emergent.exr), checked against
 /// the render size.
 void loadGivenReference(const BenchOptions& o, int width, int height, ReferenceGroup& g) {
-  const std::filesystem::path files[3] = {o.reference, standardErrorPath(o.reference), emergentPath(o.reference)};
-  g.radiance = readReferenceImage(files[0]);
-  g.standardError = readReferenceImage(files[1]);
-  if (o.receivers) g.emergent = readReferenceImage(files[2]);
-  for (int k = 0; k < (o.receivers ? 3 : 2); ++k) {
-    const gpu::Image& i = k == 0 ? g.radiance : k == 1 ? g.standardError : g.emergent;
-    if (i.width != width || i.height != height)
-      throw InputError("--reference: " + files[k].string() + " is " + std::to_string(i.width) + "x" +
-                       std::to_string(i.height) + " but the bench renders " + std::to_string(width) + "x" +
-                       std::to_string(height));
-  }
+  ReferenceImages pair = readReferencePair(o.reference, width, height, "the bench");
+  g.radiance = std::move(pair.radiance);
+  g.standardError = std::move(pair.standardError);
+  if (o.receivers) g.emergent = readReferenceImage(emergentPath(o.reference), width, height, "the bench");
   g.info = {{"file", std::filesystem::absolute(o.reference).string()}};
   try {
     for (const auto& [k, v] : gpu::readExrStringAttributes(o.reference)) g.info["attributes"][k] = v;

@@ -9,6 +9,7 @@
 #include "app/commands/frame_stats.h"
 #include "app/commands/interrupt.h"
 #include "app/commands/progress.h"
+#include "app/commands/reference_command.h"
 #include "app/commands/option_checks.h"
 #include "app/commands/video_encoder.h"
 #include "app/config/input_error.h"
@@ -126,12 +127,21 @@ int runCapture(const CaptureOptions& options) {
       // Frames go to the video as they are rendered: its size is fixed by the first.
       if (!options.video.empty() && c.action == ScriptAction::Set && (c.key == "render.width" || c.key == "render.height"))
         throw InputError(c.where + ": --video: the script changes the image size, which a video cannot have");
+      if (!options.reference.empty() && c.action == ScriptAction::Set &&
+          (c.key == "render.width" || c.key == "render.height"))
+        throw InputError(c.where + ": --reference: the script changes the image size, which the reference cannot");
     }
   }
   if (!options.video.empty()) {
     checkVideoOutput(options.video);
     checkOutputFile("--video", options.video);
   }
+
+  // --reference: every frame's error against one reference (issue 17: an animation's frame k
+  // against the reference at t_k), read and checked before any work.
+  std::optional<ReferenceImages> reference;
+  if (!options.reference.empty())
+    reference = readReferencePair(options.reference, config.render.width, config.render.height, "the capture");
 
   gpu::ContextOptions contextOptions;
   contextOptions.backend = gpu::parseGlBackend(options.gl);
@@ -216,11 +226,17 @@ int runCapture(const CaptureOptions& options) {
                      "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
                      i, census.nonFinite);
       if (previous) {
-        // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame.
+        // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame;
+        // and of the translucent objects themselves (issue 17, point 3).
+        const auto any = [](const std::vector<std::uint8_t>& mask) {
+          return std::any_of(mask.begin(), mask.end(), [](std::uint8_t m) { return m != 0; });
+        };
         const std::vector<std::uint8_t> receivers = renderer.receiverMask();
-        if (std::any_of(receivers.begin(), receivers.end(), [](std::uint8_t m) { return m != 0; }))
-          frame.receiverChange = gpu::relativeChange(image, *previous, receivers);
+        if (any(receivers)) frame.receiverChange = gpu::relativeChange(image, *previous, receivers);
+        const std::vector<std::uint8_t> translucent = renderer.translucentMask();
+        if (any(translucent)) frame.translucentChange = gpu::relativeChange(image, *previous, translucent);
       }
+      if (reference) frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);
 
       if (i == 0) std::filesystem::create_directories(out);
       gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);

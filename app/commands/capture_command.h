@@ -28,6 +28,9 @@ struct CaptureOptions {
   /// Renders per written frame, all at its time: the progressive methods accumulate over them as
   /// in a paused window, and the last is written (1: every render is written, the sequence as played).
   int accumulate = 1;
+  /// --reference REF.exr (REF_stderr.exr beside it): each frame's error against it in stats.json
+  /// (`reference_error`); empty: none.
+  std::string reference;
 };
 
 /// Returns the process exit code (0; 130 or 143 when a signal stopped it); throws InputError /

@@ -1,4 +1,6 @@
 #include "app/commands/frame_stats.h"
+
+#include "gpu/image_error.h"
 #include "gpu/image_io.h"
 #include "sss/maps/radiosity_maps.h"
 
@@ -60,6 +62,16 @@ nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::j
   return out;
 }
 
+nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError) {
+  const gpu::ImageError e = gpu::imageError(image, reference, standardError);
+  const std::optional<gpu::HalvesError> halves = gpu::imageErrorByHalf(image, reference, standardError);
+  return {{"rel_rmse", e.relRmse},
+          {"mean_ratio", e.meanRatio},
+          {"upper_mean_ratio", halves ? nlohmann::json(halves->upper.meanRatio) : nlohmann::json(nullptr)},
+          {"lower_mean_ratio", halves ? nlohmann::json(halves->lower.meanRatio) : nlohmann::json(nullptr)},
+          {"pixels", e.pixels}};
+}
+
 nlohmann::json toJson(const RunRecord& run) {
   using nlohmann::json;
   json frames = json::array();
@@ -83,6 +95,8 @@ nlohmann::json toJson(const RunRecord& run) {
                       {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
                       {"thread_cpu_ms", thread}, {"thread_cpu_total_ms", f.gpu.threadCpuTotalMs},
                       {"receiver_change", std::isfinite(f.receiverChange) ? json(f.receiverChange) : json(nullptr)},
+                      {"translucent_change", std::isfinite(f.translucentChange) ? json(f.translucentChange) : json(nullptr)},
+                      {"reference_error", f.reference},
                       {"point_lights", [&] {
                          json lights = json::array();
                          for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});

@@ -21,6 +21,10 @@ struct FrameRecord {
   sss::FrameTimings gpu;
   /// gpu::relativeChange of the receivers' radiance against the frame before (NaN: first frame).
   double receiverChange = std::numeric_limits<double>::quiet_NaN();
+  /// The same over the translucent objects' pixels (NaN: first frame, or none in view).
+  double translucentChange = std::numeric_limits<double>::quiet_NaN();
+  /// The frame against capture's --reference (referenceErrorRecord; null without one).
+  nlohmann::json reference;
   std::vector<glm::vec3> pointLights;  ///< where the point lights stood (flames move with their candle)
   /// Parameters whose value changed since the frame before (--script, the view's panel), {key: value}.
   nlohmann::json changed = nlohmann::json::object();
@@ -36,6 +40,11 @@ struct FrameRecord {
 
 /// The process's resident set now, in bytes (/proc/self/statm; 0 where it cannot be read).
 std::size_t residentBytes();
+
+/// stats.json's per-frame "reference_error" against a reference (gpu::imageError over the pixels the
+/// reference's standard-error image marks): {"rel_rmse", "mean_ratio", "upper_mean_ratio",
+/// "lower_mean_ratio" (the object's upper and lower rows; null when it spans one row), "pixels"}.
+nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError);
 
 
 /// stats.json's per-frame "pixels": {"non_finite": NaN or ±Inf pixels, "beyond_half": finite

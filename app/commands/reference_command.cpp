@@ -96,6 +96,32 @@ std::filesystem::path standardErrorPath(const std::filesystem::path& out) { retu
 
 std::filesystem::path emergentPath(const std::filesystem::path& out) { return besideOutput(out, "_emergent"); }
 
+gpu::Image readReferenceImage(const std::filesystem::path& file, const std::string& option) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw InputError(option + ": " + file.string() + " does not exist");
+  try {
+    return gpu::readExr(file);
+  } catch (const std::exception& e) {
+    throw InputError(option + ": " + e.what());
+  }
+}
+
+gpu::Image readReferenceImage(const std::filesystem::path& file, int width, int height, const std::string& what,
+                              const std::string& option) {
+  gpu::Image image = readReferenceImage(file, option);
+  if (image.width != width || image.height != height)
+    throw InputError(option + ": " + file.string() + " is " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " but " + what + " renders " + std::to_string(width) + "x" +
+                     std::to_string(height));
+  return image;
+}
+
+ReferenceImages readReferencePair(const std::filesystem::path& file, int width, int height, const std::string& what,
+                                  const std::string& option) {
+  return {readReferenceImage(file, width, height, what, option),
+          readReferenceImage(standardErrorPath(file), width, height, what, option)};
+}
+
 std::string emergentFlag() {
   std::string flag = "--emergent{";
   flag += std::to_string(sss::kDefaultEmitterPoints);

@@ -14,6 +14,7 @@
 
 #include "app/commands/progress.h"
 #include "app/config/setup.h"
+#include "gpu/image.h"
 #include "sss/reference/reference_integrator.h"
 
 namespace tallow::app {
@@ -45,6 +46,23 @@ std::filesystem::path standardErrorPath(const std::filesystem::path& out);
 
 /// REF_emergent.exr beside REF.exr (with --emergent).
 std::filesystem::path emergentPath(const std::filesystem::path& out);
+
+/// A file of a reference given with `option` (REF.exr, REF_stderr.exr, …) read whole; throws
+/// InputError with one line (`--reference: REF.exr does not exist`, the EXR reader's message).
+gpu::Image readReferenceImage(const std::filesystem::path& file, const std::string& option = "--reference");
+
+/// The same, checked against the size `what` renders: throws InputError naming the file and both
+/// sizes when they differ.
+gpu::Image readReferenceImage(const std::filesystem::path& file, int width, int height, const std::string& what,
+                              const std::string& option = "--reference");
+
+/// REF.exr and REF_stderr.exr (whose alpha marks the object pixels compared), checked against the
+/// size `what` renders: throws InputError naming the file and both sizes when they differ.
+struct ReferenceImages {
+  gpu::Image radiance, standardError;
+};
+ReferenceImages readReferencePair(const std::filesystem::path& file, int width, int height, const std::string& what,
+                                  const std::string& option = "--reference");
 
 /// The option that turns the emergent light on, with its default emitter count: `--emergent{N}`
 /// (CLI11's flag-with-value syntax: `--emergent` gives N, `--emergent=M` gives M).

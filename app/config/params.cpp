@@ -341,6 +341,21 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "converged and only the camera pass runs.", 1, 1 << 20),
                               64),
                   [](auto& c) -> auto& { return c.render.sss.frames; }));
+  r.add(bind<int>(withDefault(declare("sss.history", "int", "frames",
+                                      "When the geometry deforms or a light moves, the maps are not restarted: each "
+                                      "map texel whose surface point (within sss.history_move) and normal (within 25 "
+                                      "degrees) still hold keeps at most this many frames of its estimate, the others "
+                                      "start again; 0 restarts the maps on every change (the paper).",
+                                      0, 1 << 20),
+                              8),
+                  [](auto& c) -> auto& { return c.render.sss.history; }));
+  r.add(bind<float>(withDefault(declare("sss.history_move", "float", "× 1/σ_tr",
+                                        "How far a map texel's surface point may move from one frame to the next and "
+                                        "keep its history (sss.history), in units of the shortest diffusion length "
+                                        "1/sigma_tr of the translucent materials: B changes on that scale.",
+                                        0, 100),
+                                0.5),
+                    [](auto& c) -> auto& { return c.render.sss.historyMove; }));
   r.add(bind<bool>(withDefault(declare("sss.light_map_auto", "bool", "",
                                        "Raise the light G-buffer size above sss.light_map_size (to a power of two, at "
                                        "most the GPU's texture limit and 8192) until a texel is no larger than the "

@@ -62,7 +62,7 @@ std::string RadiosityMapsPass::reason(const FrameState& state) const {
 
 PassIo RadiosityMapsPass::io(const FrameState&) const {
   PassIo io{{resource::kGeometry, "scene.shapes", "scene.map_directions", "sss.maps", "sss.map_size", "sss.gather",
-             "accumulation"},
+             "sss.history", "sss.history_move", "accumulation"},
             {resource::kRadiosityMaps},
             {"sss.frames"}};
   append(io.reads, gatherReads());
@@ -72,8 +72,23 @@ PassIo RadiosityMapsPass::io(const FrameState&) const {
 bool RadiosityMapsPass::runsAgain(const FrameState& state) const { return frames_ < state.settings.sss.frames; }
 
 void RadiosityMapsPass::run(FrameContext& context, bool changed) {
-  frames_ = changed ? 1 : frames_ + 1;
-  maps(context).renderMaps(context.scene(), context.settings(), context.geometry, changed);
+  // What may change without a restart when sss.history > 0: the geometry and the light G-buffers
+  // (resources, not inputs), the time and where the lights are (a candle's flame moves with it).
+  // Any other input (materials, K, the estimator's settings, a bench's restart) restarts the maps,
+  // and so does Renderer::invalidate (as if nothing had run); so does a change of sss.history or
+  // sss.history_move themselves, like any setting of the maps.
+  Fingerprint key;
+  for (const std::string& name : io(context.state).reads)
+    if (isInput(name) && name != "time" && name != "scene.light_placement") key << inputFingerprint(name, context.state);
+  const bool sameSettings = key.value() == restartKey_;
+  restartKey_ = key.value();
+  MapsUpdate update = MapsUpdate::Accumulate;
+  if (changed)
+    update = sameSettings && !context.invalidated && context.settings().sss.history > 0 ? MapsUpdate::Reuse
+                                                                                         : MapsUpdate::Restart;
+  RadiosityMaps& m = maps(context);
+  m.renderMaps(context.scene(), context.settings(), context.geometry, update);
+  frames_ = m.frames();
 }
 
 // --- vpl --------------------------------------------------------------------------------------------

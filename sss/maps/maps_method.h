@@ -6,6 +6,7 @@
 //   sss.maps           step 2, K maps accumulated over sss.frames frames (progressive);
 //   vpl                §3.4, virtual point lights on the outermost surface lighting the receivers;
 // and step 3 in the camera pass: Algorithm 1 over the maps, or the gather per pixel (no-cache).
+#include <cstdint>
 #include <memory>
 
 #include "sss/translucency_method.h"
@@ -39,7 +40,8 @@ class RadiosityMapsPass final : public Pass {
   void run(FrameContext& context, bool changed) override;
 
  private:
-  int frames_ = 0;  ///< frames accumulated since the last restart
+  int frames_ = 0;  ///< frames accumulated since the last restart (RadiosityMaps::frames)
+  std::uint64_t restartKey_ = 0;  ///< fingerprint of the inputs whose change restarts the maps
 };
 
 /// vpl: the VPLs of the paper's §3.4 from this frame's maps; again every frame when vpl.stable is off.

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sss/maps/map_history.h"
 #include "sss/maps/radiosity_estimator.h"
 #include "sss/memory_budget.h"
 #include "sss/view_setup.h"
@@ -139,12 +140,7 @@ std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRa
 int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize) {
   int size = settings.sss.lightMapSize;
   if (!settings.sss.lightMapAuto) return size;
-  double shortest = 1e300;  // mm
-  for (const SceneObject& o : scene.objects)
-    if (o.translucent)
-      for (int c = 0; c < 3; ++c)
-        shortest = std::min(shortest, 1.0 / samplingSigmaTr(o.material.sigma_a[c], o.material.sigma_s[c],
-                                                            o.material.g[c], o.material.eta));
+  const double shortest = shortestDiffusionLengthMm(scene);  // mm
   const double diameterMm = 2.0 * static_cast<double>(sphereRadius) * 1000.0;
   const int cap = std::min(maxSize, 8192);
   while (size < cap && diameterMm / size > shortest) size *= 2;
@@ -165,6 +161,7 @@ RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
                                     {GL_GEOMETRY_SHADER, "maps/layered.geom"},
                                     {GL_FRAGMENT_SHADER, "maps/map_gbuffer.frag"}}}),
       mapCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/radiosity_map.comp"}}}),
+      historyCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/history.comp"}}}),
       dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
       dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
   const float zero[4] = {0, 0, 0, 0};
@@ -417,20 +414,96 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   mapDepth_.bind(depthUnit);
 }
 
+bool RadiosityMaps::viewsHold(const BoundingSphere& sphere) const {
+  // The views enclose viewSphere_; a sphere inside it is seen whole by the same texels' rays.
+  return glm::length(sphere.centre - viewSphere_.centre) + sphere.radius <= viewSphere_.radius;
+}
+
 void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                               bool restart) {
+                               MapsUpdate update) {
   const SssSettings& s = settings.sss;
   const int k = mapCount(scene, settings), size = s.mapSize;
-  if (restart) frames_ = 0;
+  const bool history = s.history > 0;
+  // Reuse needs the views it was made with and the last frame's G-buffer at this K and size.
+  if (update == MapsUpdate::Reuse &&
+      (!history || frames_ == 0 || !viewsHold(sphere_) || views_.size() != static_cast<std::size_t>(k) ||
+       maps_.width() != size || !previousPosition_.id()))
+    update = MapsUpdate::Restart;
+  if (update == MapsUpdate::Restart) {
+    frames_ = 0;
+    seed_ = 0;
+  }
+  const bool fresh = frames_ == 0;  // new views, maps emptied
   ensureMapTargets(k, size);
   const bool compute = s.computeGather;
+  // The maps' G-buffer (x_o, n_o per texel, with depth): the compute gather's input, and what the
+  // history compares frame to frame.
+  const bool gbuffer = compute || history;
   LayeredState state;
   glViewport(0, 0, size, size);
   const auto drawTranslucent = [&](gpu::Program& program) {
     drawTranslucentLayered(program, geometry, slots_, mapLayerViews_, k);
   };
+  const float zero[4] = {0, 0, 0, 0};
+  const float one = 1.0f;
+  const auto drawMapGBuffer = [&] {
+    if (!mapPosition_.id() || mapPosition_.width() != size || mapPosition_.depth() != k) {
+      mapPosition_ = colourArray(GL_RGBA32F, size, k);
+      mapNormal_ = colourArray(GL_RGBA32F, size, k);
+    }
+    if (history && (!previousPosition_.id() || previousPosition_.width() != size || previousPosition_.depth() != k)) {
+      previousPosition_ = colourArray(GL_RGBA32F, size, k);
+      previousNormal_ = colourArray(GL_RGBA32F, size, k);
+    }
+    if (!history) {
+      previousPosition_ = gpu::Texture();
+      previousNormal_ = gpu::Texture();
+    }
+    gpu::Framebuffer fb;
+    fb.attachColor(0, mapPosition_);
+    fb.attachColor(1, mapNormal_);
+    fb.attachDepth(mapDepth_);
+    fb.setDrawBuffers(2);
+    fb.checkComplete("scattered radiosity maps' G-buffer");
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
+    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
+    fb.bind();
+    mapGBufferProgram_.use();
+    drawTranslucent(mapGBufferProgram_);
+  };
 
-  if (frames_ == 0) {
+  if (!fresh && update == MapsUpdate::Reuse) {
+    // Same views: the new G-buffer beside the last one, then each texel's sum kept, trimmed to
+    // sss.history − 1 frames or reset (maps/history.comp) before this frame's estimate is added.
+    std::swap(mapPosition_, previousPosition_);
+    std::swap(mapNormal_, previousNormal_);
+    drawMapGBuffer();
+    const HistoryTolerance tolerance = historyTolerance(scene, s.historyMove);
+    gpu::Program& p = historyCompute_;
+    p.use();
+    constexpr GLuint kOldPosition = 0, kOldNormal = 1, kNewPosition = 2, kNewNormal = 3;
+    p.set("uOldPosition", static_cast<int>(kOldPosition));
+    p.set("uOldNormal", static_cast<int>(kOldNormal));
+    p.set("uNewPosition", static_cast<int>(kNewPosition));
+    p.set("uNewNormal", static_cast<int>(kNewNormal));
+    p.set("uHistory", static_cast<float>(s.history));
+    p.set("uMaxMove", tolerance.maxMoveM);
+    p.set("uMinCos", tolerance.minCos);
+    previousPosition_.bind(kOldPosition);
+    previousNormal_.bind(kOldNormal);
+    mapPosition_.bind(kNewPosition);
+    mapNormal_.bind(kNewNormal);
+    glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    const auto groups = static_cast<GLuint>((size + 7) / 8);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_FRAMEBUFFER_BARRIER_BIT);
+    frames_ = std::min(frames_, s.history - 1);
+  }
+
+  if (fresh) {
+    viewSphere_ = sphere_;
     views_ = scene.mapDirections.empty() ? radiosityMapViews(k, sphere_.centre, sphere_.radius)
                                          : radiosityMapViews(scene.mapDirections, sphere_.centre, sphere_.radius);
     std::vector<glm::mat4> layers;
@@ -447,30 +520,13 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     }
     mapLayerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
     cameraViews_ = gpu::Buffer(camera.size() * sizeof(CameraView), camera.data());
-    const float zero[4] = {0, 0, 0, 0};
-    const float one = 1.0f;
     glClearTexImage(maps_.id(), 0, GL_RGBA, GL_FLOAT, zero);
-    gpu::Framebuffer fb;
-    if (compute) {
-      // The maps' G-buffer (x_o, n_o per texel) with depth: the compute gather's input and the
-      // visibility of Algorithm 1.
-      if (!mapPosition_.id() || mapPosition_.width() != size || mapPosition_.depth() != k) {
-        mapPosition_ = colourArray(GL_RGBA32F, size, k);
-        mapNormal_ = colourArray(GL_RGBA32F, size, k);
-      }
-      fb.attachColor(0, mapPosition_);
-      fb.attachColor(1, mapNormal_);
-      fb.attachDepth(mapDepth_);
-      fb.setDrawBuffers(2);
-      fb.checkComplete("scattered radiosity maps' G-buffer");
-      glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
-      glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
-      glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
-      fb.bind();
-      mapGBufferProgram_.use();
-      drawTranslucent(mapGBufferProgram_);
+    if (gbuffer) {
+      // The maps' G-buffer with depth: also the visibility of Algorithm 1.
+      drawMapGBuffer();
     } else {
       // Depth pre-pass of the translucent objects into all K layers.
+      gpu::Framebuffer fb;
       fb.attachDepth(mapDepth_);
       fb.setDrawBuffers(0);
       fb.checkComplete("scattered radiosity maps' depth");
@@ -484,7 +540,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   if (compute) {
     gpu::Program& p = mapCompute_;
     p.use();
-    setGatherUniforms(p, scene, settings, 0, frames_);
+    setGatherUniforms(p, scene, settings, 0, seed_);
     constexpr GLuint kMapPositionUnit = 4, kMapNormalUnit = 5;
     p.set("uMapPosition", static_cast<int>(kMapPositionUnit));
     p.set("uMapNormal", static_cast<int>(kMapNormalUnit));
@@ -508,17 +564,18 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     mapProgram_.use();
-    setGatherUniforms(mapProgram_, scene, settings, 0, frames_);
+    setGatherUniforms(mapProgram_, scene, settings, 0, seed_);
     drawTranslucent(mapProgram_);
   }
   ++frames_;
+  ++seed_;
   glGenerateTextureMipmap(maps_.id());
 }
 
 std::size_t RadiosityMaps::bytes() const {
   return dirPosition_.bytes() + dirNormal_.bytes() + dirDepth_.bytes() + pointPosition_.bytes() +
          pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes() + mapPosition_.bytes() +
-         mapNormal_.bytes();
+         mapNormal_.bytes() + previousPosition_.bytes() + previousNormal_.bytes();
 }
 
 }  // namespace tallow::sss

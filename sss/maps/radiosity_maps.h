@@ -80,6 +80,14 @@ std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRa
 /// translucent objects, capped at `maxSize`.
 int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize);
 
+/// What step 2 does with the maps this frame.
+enum class MapsUpdate {
+  Accumulate,  ///< nothing moved: N more samples added to every texel
+  Restart,     ///< new views, the maps emptied (the paper, whenever light or geometry change)
+  Reuse,       ///< the geometry or a light moved: each texel keeps, trims or resets its sum by
+               ///< sss.history (maps/history.comp), then N samples; a restart when it cannot
+};
+
 class RadiosityMaps {
  public:
   explicit RadiosityMaps(const gpu::ShaderLibrary& shaders);
@@ -96,12 +104,17 @@ class RadiosityMaps {
   /// Step 1 (pass sss.light_gbuffer): the translucent slots, the objects' bounding sphere, the light
   /// G-buffers' size and textures, then every light's G-buffer drawn.
   void renderLightGBuffers(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry);
-  /// Step 2 (pass sss.maps): with `restart`, the K views and the maps' depth (or G-buffer) anew and
-  /// the accumulation emptied; then one frame of N samples added to every map. Needs the light
-  /// G-buffers of renderLightGBuffers.
-  void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry, bool restart);
+  /// Step 2 (pass sss.maps): on a restart, the K views and the maps' depth (or G-buffer) anew and
+  /// the accumulation emptied; on a reuse (sss.history > 0; a restart when the objects' bounding
+  /// sphere left the views' or nothing was accumulated), the maps' G-buffer anew and each texel's
+  /// history kept where its surface point and normal hold; then one frame of N samples added to
+  /// every map. Needs the light G-buffers of renderLightGBuffers.
+  void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
+                  MapsUpdate update);
 
-  int frames() const { return frames_; }   ///< F, frames accumulated in the maps
+  /// F, frames accumulated in the maps since the last restart (after a reuse, at most sss.history;
+  /// per texel, the maps' alpha holds its own count)
+  int frames() const { return frames_; }
   int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
   const std::vector<MapView>& views() const { return views_; }
   /// The K views as shaders/maps/algorithm1.glsl's MapViewGpu array (std430: world → [0,1]³,
@@ -139,14 +152,16 @@ class RadiosityMaps {
   void ensureLightTargets(int dirCount, int pointCount);
   void ensureMapTargets(int k, int size);
   void setLightUniforms(gpu::Program& program, const Scene& scene, GLuint firstUnit) const;
+  bool viewsHold(const BoundingSphere& sphere) const;
 
 
-  gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_;
+  gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_;
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
   gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
   gpu::Texture maps_, mapDepth_;
-  gpu::Texture mapPosition_, mapNormal_;  ///< the maps' G-buffer (compute gather only)
+  gpu::Texture mapPosition_, mapNormal_;  ///< the maps' G-buffer (compute gather or history)
+  gpu::Texture previousPosition_, previousNormal_;  ///< the last frame's (history only)
   gpu::Buffer gbufferViews_;   ///< std430 mat4 per light G-buffer layer being drawn
   gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered.geom)
   gpu::Buffer cameraViews_;    ///< the maps as Algorithm 1 reads them (cameraViews())
@@ -155,7 +170,9 @@ class RadiosityMaps {
   std::vector<glm::vec3> dirTangent_, dirBitangent_;
   std::vector<int> slots_;
   BoundingSphere sphere_;
+  BoundingSphere viewSphere_;  ///< the sphere views_ were made for
   int frames_ = 0;
+  int seed_ = 0;  ///< frames since the last restart: the estimator's frame seed (never repeats on a reuse)
   int lightMapSize_ = 0;
 };
 

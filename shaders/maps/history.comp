@@ -1,0 +1,28 @@
+#version 450 core
+// Before a frame's gather after the geometry or a light moved (sss.history > 0): each map texel's
+// accumulated sum is kept, trimmed or reset by sssHistoryScale (maps/history.glsl), comparing the
+// maps' G-buffer of the last frame with this frame's. Texels with no surface now are reset, so no
+// stale sum reaches the mipmaps.
+#include "maps/history.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform sampler2DArray uOldPosition;  // xyz: x_o [m], w: slot + 1 (0: no surface)
+uniform sampler2DArray uOldNormal;
+uniform sampler2DArray uNewPosition;
+uniform sampler2DArray uNewNormal;
+uniform float uHistory;  // sss.history
+uniform float uMaxMove;  // [m]
+uniform float uMinCos;
+layout(rgba32f, binding = 0) uniform image2DArray uMaps;
+
+void main() {
+  ivec3 id = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(id, imageSize(uMaps)))) return;
+  vec4 m = imageLoad(uMaps, id);
+  vec4 o = texelFetch(uOldPosition, id, 0);
+  vec4 n = texelFetch(uNewPosition, id, 0);
+  float s = sssHistoryScale(o.xyz, o.w, texelFetch(uOldNormal, id, 0).xyz, n.xyz, n.w,
+                            texelFetch(uNewNormal, id, 0).xyz, m.a, uHistory, uMaxMove, uMinCos);
+  imageStore(uMaps, id, m * s);
+}
