@@ -26,7 +26,10 @@ SIZE = "160x90"
 # preset, first frame's time [s], frames per second: every frame at a new time, k frames.
 ANIMATIONS = (("blob", 2.0, 8.0), ("candle", 12.0, 4.0))
 FRAMES = 8
-HISTORIES = (0, 4, 8, 16)
+# (sss.history, sss.history_move, sss.samples): the paper's restart, then the history's length and
+# its tolerance at the default N = 8; then both at N = 1, where one frame alone is noisy.
+VARIANTS = ((0, 0.5, 8), (4, 0.5, 8), (8, 0.25, 8), (8, 0.5, 8), (8, 1.0, 8), (16, 0.5, 8),
+            (0, 0.5, 1), (8, 0.25, 1), (8, 0.5, 1))
 REF_REL_ERROR = "0.02"
 
 
@@ -42,6 +45,11 @@ def call(cmd, out_file):
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
 
 
+def run_dir(work, preset, history, move, samples):
+    name = "%s_history_%d_move_%g" % (preset, history, move)
+    return os.path.join(work, name if samples == 8 else name + "_n%d" % samples)
+
+
 def run(work, quick):
     os.makedirs(work, exist_ok=True)
     binary = os.environ.get("TALLOW", "tallow")
@@ -52,10 +60,12 @@ def run(work, quick):
         ref = os.path.join(work, "%s_ref.exr" % preset)
         call([binary, "reference", "--preset", preset, "--size", size, "--time", repr(tk),
               *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref)
-        for history in ((0, 8) if quick else HISTORIES):
-            out = os.path.join(work, "%s_history_%d" % (preset, history))
+        for history, move, samples in (VARIANTS[:2] if quick else VARIANTS):
+            out = run_dir(work, preset, history, move, samples)
             call([binary, "capture", "--preset", preset, "--size", size, "--time", repr(t0), "--fps", repr(fps),
-                  "--frames", str(frames), "--reference", ref, "--set", "sss.history=%d" % history, "--out", out],
+                  "--frames", str(frames), "--reference", ref, "--set", "sss.history=%d" % history,
+                  "--set", "sss.history_move=%g" % move, "--set", "sss.samples=%d" % samples,
+                  "--set", "render.flame=false", "--out", out],
                  os.path.join(out, "stats.json"))
 
 
@@ -70,6 +80,13 @@ def fmt(x, d=3):
 
 def pct(x):
     return "—" if x is None else "%.1f%%" % (100.0 * x)
+
+
+def eps(text):
+    try:
+        return pct(float(text))
+    except (TypeError, ValueError):
+        return "?"
 
 
 def reference_info(path):
@@ -102,8 +119,8 @@ def section(work):
     rows = []
     for preset, t0, fps in ANIMATIONS:
         ref = os.path.join(work, "%s_ref.exr" % preset)
-        for history in HISTORIES:
-            path = os.path.join(work, "%s_history_%d" % (preset, history), "stats.json")
+        for history, move, samples in VARIANTS:
+            path = os.path.join(run_dir(work, preset, history, move, samples), "stats.json")
             if not os.path.exists(path):
                 continue
             with open(path) as f:
@@ -113,7 +130,7 @@ def section(work):
             last = frames[-1]
             err = last.get("reference_error") or {}
             rows.append({
-                "preset": preset, "history": history, "frames": len(frames), "t0": frames[0]["time_s"],
+                "preset": preset, "history": history, "move": move, "samples": samples, "frames": len(frames), "t0": frames[0]["time_s"],
                 "tk": last["time_s"], "fps": fps, "rel_rmse": err.get("rel_rmse"), "mean": err.get("mean_ratio"),
                 "upper": err.get("upper_mean_ratio"), "lower": err.get("lower_mean_ratio"),
                 "pixels": err.get("pixels"),
@@ -121,14 +138,15 @@ def section(work):
                 "translucent_change": median([f.get("translucent_change") for f in frames[1:]]),
                 "receiver_change": median([f.get("receiver_change") for f in frames[1:]]),
                 "wall": median([f["wall_ms"] for f in frames[1:]]),
-                "maps_frames": (last.get("sss") or {}).get("frames"),
+                "maps_frames": (last.get("sss") or {}).get("frames_accumulated"),
                 "ref": reference_info(ref), "size": stats["resolution"],
             })
     renderer = gl.get("GL_RENDERER", "?") if gl else "?"
     add("Device: `%s`." % renderer)
     add("")
     add("Each preset is played from t₀ at a fixed frame rate, every frame at a new time (the field and, for the")
-    add("candle, the flame move), one render per frame as in the window; frame k's image is compared with")
+    add("candle, the flame's light move), one render per frame as in the window, the flame itself not drawn (the")
+    add("reference has none, as in `tallow bench`); frame k's image is compared with")
     add("`tallow reference` at t_k (object pixels the reference marks; ε its relative standard error). `history 0`")
     add("is the paper: the maps restart at every change, so each frame is a first frame. Otherwise each map texel")
     add("keeps at most `sss.history` frames where its surface point and normal still hold")
@@ -136,25 +154,37 @@ def section(work):
     add("the median over frames 2…k of the translucent pixels' and the receivers' mean absolute frame-to-frame")
     add("change relative to their mean (part of it is the motion itself, the same for every row of a preset).")
     add("")
-    add("| preset | size | t₀ → t_k [s] | k | sss.history | F at k | frame k rel. RMSE | frame 1 rel. RMSE | mean ratio (upper / lower) | translucent change | receiver change | wall [ms] | reference |")
-    add("|---|---|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---|")
+    add("| preset | size | t₀ → t_k [s] | k | N | sss.history | sss.history_move | F at k | frame k rel. RMSE | frame 1 rel. RMSE | mean ratio (upper / lower) | translucent change | receiver change | wall [ms] | reference |")
+    add("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---|")
     for r in rows:
         ref = r["ref"]
-        add("| %s | %d×%d | %.3g → %.3g | %d | %d | %s | %s | %s | %s (%s / %s) | %s | %s | %s | %s spp, ε %s |" % (
-            r["preset"], r["size"][0], r["size"][1], r["t0"], r["tk"], r["frames"], r["history"],
+        add("| %s | %d×%d | %.3g → %.3g | %d | %d | %d | %s | %s | %s | %s | %s (%s / %s) | %s | %s | %s | %s spp, ε %s |" % (
+            r["preset"], r["size"][0], r["size"][1], r["t0"], r["tk"], r["frames"], r["samples"], r["history"],
+            "—" if r["history"] == 0 else "%g" % r["move"],
             r["maps_frames"] if r["maps_frames"] is not None else "—", pct(r["rel_rmse"]), pct(r["first_rel_rmse"]),
             fmt(r["mean"]), fmt(r["upper"]), fmt(r["lower"]), pct(r["translucent_change"]), pct(r["receiver_change"]),
-            fmt(r["wall"], 0), ref.get("tallow.spp", "?"), ref.get("tallow.rel_error", "?")))
+            fmt(r["wall"], 0), ref.get("tallow.spp", "?"), eps(ref.get("tallow.rel_error"))))
     add("")
     for preset, _, _ in ANIMATIONS:
-        base = next((r for r in rows if r["preset"] == preset and r["history"] == 0), None)
         for r in rows:
+            base = next((b for b in rows if b["preset"] == preset and b["history"] == 0 and b["samples"] == r["samples"]),
+                        None)
             if r["preset"] != preset or r["history"] == 0 or not base or not r["rel_rmse"] or not base["rel_rmse"]:
                 continue
-            add("- %s, sss.history = %d: frame k's relative RMSE %s against %s restarting (%s× lower); translucent"
-                " change %s against %s." % (preset, r["history"], pct(r["rel_rmse"]), pct(base["rel_rmse"]),
+            add("- %s, N = %d, sss.history = %d, sss.history_move = %g: frame k's relative RMSE %s against %s restarting"
+                " (restart / history = %s); translucent change %s against %s." % (
+                    preset, r["samples"], r["history"], r["move"], pct(r["rel_rmse"]),
+                                            pct(base["rel_rmse"]),
                                             fmt(base["rel_rmse"] / r["rel_rmse"], 2), pct(r["translucent_change"]),
                                             pct(base["translucent_change"])))
+    compared = [(r, next((b for b in rows if b["preset"] == r["preset"] and b["history"] == 0 and
+                          b["samples"] == r["samples"]), None)) for r in rows if r["history"] > 0]
+    compared = [(r, b) for r, b in compared if b and r["rel_rmse"] and b["rel_rmse"]]
+    if compared:
+        better = sum(1 for r, b in compared if r["rel_rmse"] < b["rel_rmse"])
+        add("")
+        add("Verdict: a kept history has the lower error at frame k in %d of %d cases; the default `sss.history`"
+            " is %s." % (better, len(compared), "0 (restart)" if better * 2 < len(compared) else "worth raising"))
     add("")
     add("Rerun: `TALLOW=build/tallow python3 scripts/results_history.py run DIR && python3 scripts/results_history.py"
         " splice DIR docs/RESULTS.md` (or the whole `bash scripts/results.sh`).")

@@ -30,8 +30,9 @@ struct SssSettings {
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
   /// sss.history: when the geometry or the lights move, each map texel whose surface point and
   /// normal still hold keeps at most this many frames of its accumulated estimate (the rest is
-  /// reset); 0 restarts the maps (the paper). shaders/maps/history.glsl, issue 17.
-  int history = 8;
+  /// reset); 0 restarts the maps (the paper, and the default: measured better at N = 8, see
+  /// docs/RESULTS.md). shaders/maps/history.glsl, issue 17.
+  int history = 0;
   /// sss.history_move: how far a texel's surface point may move for it to keep its history, in
   /// units of the shortest diffusion length 1/σ_tr of the translucent materials.
   float historyMove = 0.5f;

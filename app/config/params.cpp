@@ -345,9 +345,11 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "When the geometry deforms or a light moves, the maps are not restarted: each "
                                       "map texel whose surface point (within sss.history_move) and normal (within 25 "
                                       "degrees) still hold keeps at most this many frames of its estimate, the others "
-                                      "start again; 0 restarts the maps on every change (the paper).",
+                                      "start again; 0 (the default) restarts the maps on every change, as the paper "
+                                      "does: at the default N the lag of a kept history measured worse than a "
+                                      "restart (docs/RESULTS.md).",
                                       0, 1 << 20),
-                              8),
+                              0),
                   [](auto& c) -> auto& { return c.render.sss.history; }));
   r.add(bind<float>(withDefault(declare("sss.history_move", "float", "× 1/σ_tr",
                                         "How far a map texel's surface point may move from one frame to the next and "
