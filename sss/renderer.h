@@ -57,6 +57,8 @@ class Renderer {
  public:
   /// Compiles the shared passes and uploads the scene's shapes. Needs a current GL 4.5 context.
   Renderer(const gpu::ShaderLibrary& shaders, const Scene& scene, const RenderSettings& settings);
+  /// The renderer keeps a reference to the shader library: a temporary would dangle.
+  Renderer(gpu::ShaderLibrary&&, const Scene&, const RenderSettings&) = delete;
   ~Renderer();
 
   /// The passes of a first frame, with why the scene needs each (no GL context needed).

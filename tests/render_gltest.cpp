@@ -194,7 +194,8 @@ TEST(RenderGL, DisplayPassMatchesTheCppToneMapOfThePngWriter) {
     const app::LoadedScene loaded = app::loadScene(options);
     gpu::ContextOptions contextOptions;
     auto context = gpu::GlContext::create(contextOptions);
-    sss::Renderer renderer(gpu::ShaderLibrary(), loaded.config.scene, loaded.config.render);
+    const gpu::ShaderLibrary shaders;  // outlives the renderer, which keeps a reference
+    sss::Renderer renderer(shaders, loaded.config.scene, loaded.config.render);
     renderer.render(loaded.config.scene, loaded.config.render, 0.0);
     const gpu::Image radiance = renderer.readRadiance();
 
