@@ -400,7 +400,9 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                         "light (mapped stereographically onto x_o's tangent plane) instead of Eq. 12's "
                                         "exponential, weighted by the mixture's density. It reaches wax lit from "
                                         "centimetres away, which Eq. 12 almost never samples and cuts off at "
-                                        "16.6/sigma_tr; 0: Eq. 12 alone (the paper).", 0.0, 0.95),
+                                        "16.6/sigma_tr. Directional lights use the same share where x_o lies more than "
+                                        "1/sigma_tr behind the lit surface (a thick, backlit object), with a scale of "
+                                        "sqrt(depth/sigma_tr); 0: Eq. 12 alone (the paper).", 0.0, 0.95),
                                 0.25),
                     [](auto& c) -> auto& { return c.render.sss.pointShare; }));
 

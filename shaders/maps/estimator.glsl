@@ -195,6 +195,19 @@ TALLOW_FN SssSample sssDrawSharedSample(real3 xo, real3 t1, real3 t2, real3 sigm
   return s;
 }
 
+// --- Directional lights on thick, backlit objects (issue 17) -------------------------------
+// Where x_o lies on the far side of a thick object, the light enters a depth h ahead of it along the
+// light (the light G-buffer at x_o's own place), and the integrand over the view plane falls as
+// exp(−σ_tr √(r² + h²)): for h σ_tr ≫ 1 a Gaussian of width √(h/σ_tr), wider than Eq. 12's 1/σ_tr,
+// so Eq. 12's samples rarely reach where it lies (heavy-tailed weights: speckles, and a frame's
+// mean short of the truth). The gather then mixes in p₂ as for a point light, with
+// 2R = √(h/σ_tr) of the band that reaches furthest (smallest σ_tr); R = 0 (Eq. 12 alone) where
+// h σ_tr ≤ 1, a front-lit or thin x_o.
+TALLOW_FN real sssBacklitRadius(real depth, real sigmaTrMin) {
+  if (depth * sigmaTrMin <= real(1)) return real(0);
+  return real(0.5) * sqrt(depth / sigmaTrMin);
+}
+
 // --- Point lights: the cube-map look-up direction (§3.3) ------------------------------------
 // Planar sampling looks the cube-map G-buffer up along x_j − x_ℓ.
 TALLOW_FN real3 sssPlanarLookupDirection(real3 xj, real3 xl) { return xj - xl; }

@@ -40,9 +40,15 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
   for (int l = 0; l < uSssDirCount; ++l) {
     vec3 w = uSssDirDirection[l];
     vec3 acc = vec3(0.0);
+    // x_o behind the lit surface (issue 17): the depth at which the light enters, from the G-buffer
+    // at x_o's own place, scales a second density (sssBacklitRadius; share sss.point_share).
+    GSample front = directionalGBuffer(l, xoWorld);
+    float depth = front.tag == slot + 1 ? dot(front.position * MM_PER_M - xo, w) : 0.0;
+    float backlit = uProjectedArea != 0 ? sssBacklitRadius(depth, min(sigmaTr.x, min(sigmaTr.y, sigmaTr.z))) : 0.0;
     for (int j = 0; j < uSamples; ++j) {
-      SssSample s = sssDrawSharedSample(xo, uSssDirTangent[l], uSssDirBitangent[l], sigmaTr, 0.0, 0.0, texel.x,
-                                        texel.y, uint(map), uint(uFrame), uint(j), uint(uSamples));
+      SssSample s = sssDrawSharedSample(xo, uSssDirTangent[l], uSssDirBitangent[l], sigmaTr, backlit,
+                                        backlit > 0.0 ? uPointShare : 0.0, texel.x, texel.y, uint(map),
+                                        uint(uFrame), uint(j), uint(uSamples));
       GSample g = directionalGBuffer(l, s.xj / MM_PER_M);
       if (g.tag != slot + 1) continue;  // another object or an occluder: x_j is not lit here
       // x_i keeps x_j's exact place across the light's view (the texel's centre would quantise

@@ -1,5 +1,6 @@
 #include "sss/maps/radiosity_estimator.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -139,6 +140,7 @@ double stereographicAreaRatio(const glm::dvec3& xo, const glm::dvec3& no, const 
   return estimator_f64::sssStereographicAreaRatio(xo, no, xj, xl, xi, ni);
 }
 
+double backlitRadius(double depth, double sigmaTrMin) { return estimator_f64::sssBacklitRadius(depth, sigmaTrMin); }
 double stereoRadialPdf(double r, double radius) { return estimator_f64::sssStereoRadialPdf(r, radius); }
 double sampleStereoRadius(double xi, double radius) { return estimator_f64::sssSampleStereoRadius(xi, radius); }
 double bandMixturePdf(double r, const glm::dvec3& sigmaTr, double radius, double share) {
@@ -202,9 +204,15 @@ ScatteredRadiosity estimateScatteredRadiosity(const ScatteredRadiosityInput& in,
     };
     const auto n = static_cast<std::uint32_t>(in.samples);
     if (in.bandSampling == BandSampling::Shared) {
+      // A directional light: a second density only where x_o lies behind the lit surface.
+      double radius = 0.0;
+      if (in.backlitShare > 0.0)
+        if (const std::optional<LightGBufferHit> front = lookup(in.xo))
+          radius = backlitRadius(glm::dot(front->xi - in.xo, in.toLight),
+                                 static_cast<double>(std::min({sigmaTr.x, sigmaTr.y, sigmaTr.z})));
+      const Real share = Real(radius > 0.0 ? in.backlitShare : 0.0);
       for (std::uint32_t j = 0; j < n; ++j) {
-        // A directional light: no second density (share 0, radius 0).
-        const auto s = drawShared(xo, t1, t2, sigmaTr, Real(0), Real(0), in.texelX, in.texelY, in.map, in.frame, j, n);
+        const auto s = drawShared(xo, t1, t2, sigmaTr, Real(radius), share, in.texelX, in.texelY, in.map, in.frame, j, n);
         if (const std::optional<LightGBufferHit> hit = lookup(glm::dvec3(s.xj)))
           for (int c = 0; c < 3; ++c) add(c, s, *hit);
       }

@@ -83,6 +83,9 @@ double sampleStereoRadius(double xi, double radius);
 /// shaders/maps/estimator.glsl): (1 − share)·(the bands' Eq. 11 at their rates sigmaTr, averaged) +
 /// share·p₂ about a light at distance radius. The weight of a drawn r is r/p_mix.
 double bandMixturePdf(double r, const glm::dvec3& sigmaTr, double radius, double share);
+/// R of the second density for a directional light where x_o lies `depth` [mm] behind the lit
+/// surface (shaders/maps/estimator.glsl, sssBacklitRadius): 0 where depth·σ_tr,min ≤ 1.
+double backlitRadius(double depth, double sigmaTrMin);
 
 /// Sample `stream.sample` of `sampleCount` on x_o's tangent plane (orthonormal t1, t2) as the gather
 /// draws it for all three bands at once: the technique (p₂ with probability share when radius > 0,
@@ -135,6 +138,9 @@ struct ScatteredRadiosityInput {
   std::uint32_t texelX = 0, texelY = 0, map = 0, frame = 0;
   /// Orthonormal basis of the sampling plane (the light's view plane for a directional light).
   glm::dvec3 t1{1.0, 0.0, 0.0}, t2{0.0, 1.0, 0.0};
+  /// Shared pattern: the second density's share where x_o is backlit (sss.point_share, as the
+  /// gather): the depth of lookup(x_o) ahead of x_o along toLight gives sssBacklitRadius; 0: Eq. 12 alone.
+  double backlitShare = 0.0;
 };
 
 struct ScatteredRadiosity {
