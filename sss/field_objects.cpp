@@ -126,10 +126,10 @@ std::size_t FieldObjects::triangleCount() const {
 
 std::size_t FieldObjects::bytes() const {
   std::size_t n = 0;
-  for (const auto& e : entries_)
+  for (const auto& e : entries_) {
     if (e->dc) n += e->dc->bufferBytes();
-  for (const auto& e : entries_)
     if (e->melt) n += e->melt->bytes();
+  }
   return n;
 }
 

@@ -220,7 +220,9 @@ int runCapture(const CaptureOptions& options) {
       gpu::Image image = renderer.readRadiance();
       const gpu::PixelCensus census = gpu::censusPixels(image);
       frame.pixels = pixelsRecord(census, options.exrFloat);
-      frame.pixels.update(clippedRecord(image, renderer.translucentMask(), config.render.toneMap));
+      // Read back once: the clipped count and the translucent pixels' frame-to-frame change use it.
+      const std::vector<std::uint8_t> translucent = renderer.translucentMask();
+      frame.pixels.update(clippedRecord(image, translucent, config.render.toneMap));
       if (census.nonFinite > 0)
         std::fprintf(stderr,
                      "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
@@ -233,7 +235,6 @@ int runCapture(const CaptureOptions& options) {
         };
         const std::vector<std::uint8_t> receivers = renderer.receiverMask();
         if (any(receivers)) frame.receiverChange = gpu::relativeChange(image, *previous, receivers);
-        const std::vector<std::uint8_t> translucent = renderer.translucentMask();
         if (any(translucent)) frame.translucentChange = gpu::relativeChange(image, *previous, translucent);
       }
       if (reference) frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);

@@ -42,9 +42,13 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
     vec3 acc = vec3(0.0);
     // x_o behind the lit surface (issue 17): the depth at which the light enters, from the G-buffer
     // at x_o's own place, scales a second density (sssBacklitRadius; share sss.point_share).
-    GSample front = directionalGBuffer(l, xoWorld);
-    float depth = front.tag == slot + 1 ? dot(front.position * MM_PER_M - xo, w) : 0.0;
-    float backlit = uProjectedArea != 0 ? sssBacklitRadius(depth, min(sigmaTr.x, min(sigmaTr.y, sigmaTr.z))) : 0.0;
+    // The extra look-up only when a share is given (and the area ratio, as for point lights).
+    float backlit = 0.0;
+    if (uProjectedArea != 0 && uPointShare > 0.0) {
+      GSample front = directionalGBuffer(l, xoWorld);
+      float depth = front.tag == slot + 1 ? dot(front.position * MM_PER_M - xo, w) : 0.0;
+      backlit = sssBacklitRadius(depth, min(sigmaTr.x, min(sigmaTr.y, sigmaTr.z)));
+    }
     for (int j = 0; j < uSamples; ++j) {
       SssSample s = sssDrawSharedSample(xo, uSssDirTangent[l], uSssDirBitangent[l], sigmaTr, backlit,
                                         backlit > 0.0 ? uPointShare : 0.0, texel.x, texel.y, uint(map),
