@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Issue 16, point 4: the docs/RESULTS.md section on dual contouring's vertex placement.
 
-  results_placement.py PLACEMENT.json MD     appends the section to MD
+  results_placement.py PLACEMENT.json MD          appends the section to MD
+  results_placement.py splice PLACEMENT.json MD   replaces it in MD (or adds it before the GPU section)
 
 PLACEMENT.json is what `tallow probe placement` writes (scripts/results.sh runs it); every number in
 the section comes from it, and so does the verdict (which placement is closer to the exact surface,
@@ -9,7 +10,11 @@ on the sharp and on the smooth shapes).
 """
 import json
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results_sections  # noqa: E402
 
 SOFTWARE = ("llvmpipe", "softpipe", "swrast", "lavapipe")
 
@@ -103,12 +108,18 @@ def section(r):
 
 
 def main(argv):
+    splice = len(argv) == 3 and argv[0] == "splice"
+    if splice:
+        argv = argv[1:]
     if len(argv) != 2:
         sys.exit(__doc__)
     with open(argv[0]) as f:
         r = json.load(f)
-    with open(argv[1], "a") as f:
-        f.write("\n".join(section(r)) + "\n")
+    lines = section(r)
+    if splice:
+        results_sections.splice(argv[1], lines[0], lines)
+    else:
+        results_sections.append(argv[1], lines)
 
 
 if __name__ == "__main__":
