@@ -137,7 +137,7 @@ std::size_t imageSpaceBytes(int width, int height, int translucentObjects, const
   return targets + pattern;
 }
 
-FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize) {
+FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize, int mapSize) {
   FrameMemory m;
   const auto add = [&](std::string name, std::string sizedBy, std::size_t bytes) {
     if (bytes > 0) m.items.push_back({std::move(name), std::move(sizedBy), bytes});
@@ -152,16 +152,21 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
   for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? directional : point)++;
   const SssSettings& s = settings.sss;
   if (RadiosityMaps::needsLightGBuffers(scene, settings)) {
-    const int size = lightMapSize > 0 ? lightMapSize : s.lightMapSize;
+    const int size = lightMapSize > 0 ? lightMapSize : s.lightMapSize == kAuto ? kAutoBudgetSize : s.lightMapSize;
     add("light G-buffers",
         std::to_string(directional) + " directional and " + std::to_string(point) + " point light(s) at " +
-            (lightMapSize > 0 ? "sss.light_map_auto's " + std::to_string(size) + "²" : square("sss.light_map_size", size)),
+            (lightMapSize > 0 || s.lightMapSize == kAuto ? "the chosen sss.light_map_size " + std::to_string(size) + "²"
+                                                         : square("sss.light_map_size", size)),
         lightGBufferBytes(directional, point, size));
   }
   if (RadiosityMaps::applies(scene, settings)) {
     const int k = mapCount(scene, settings);
-    add("radiosity maps", "sss.maps=" + std::to_string(k) + " × " + square("sss.map_size", s.mapSize),
-        radiosityMapBytes(k, s.mapSize, s.computeGather, s.history > 0));
+    const int size = mapSize > 0 ? mapSize : s.mapSize == kAuto ? kAutoBudgetSize : s.mapSize;
+    add("radiosity maps",
+        "sss.maps=" + std::to_string(k) + " × " +
+            (mapSize > 0 || s.mapSize == kAuto ? "the chosen sss.map_size " + std::to_string(size) + "²"
+                                               : square("sss.map_size", size)),
+        radiosityMapBytes(k, size, s.computeGather, s.history > 0));
   }
   if (VirtualPointLights::applies(scene, settings)) {
     const VplSettings& v = settings.vpl;
@@ -186,8 +191,8 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
   return m;
 }
 
-void checkMemoryBudget(const Scene& scene, const RenderSettings& settings, int lightMapSize) {
-  const FrameMemory m = frameMemory(scene, settings, lightMapSize);
+void checkMemoryBudget(const Scene& scene, const RenderSettings& settings, int lightMapSize, int mapSize) {
+  const FrameMemory m = frameMemory(scene, settings, lightMapSize, mapSize);
   const std::size_t need = m.total();
   const gpu::GpuMemory gpuMemory = gpu::gpuMemory();
   if (need <= gpuMemory.bytes) return;

@@ -51,14 +51,17 @@ std::size_t dualContouringBytes(int samplesPerAxis);
 /// The image-space method's screen buffers and sample pattern (ImageSpaceSss::bytes()).
 std::size_t imageSpaceBytes(int width, int height, int translucentObjects, const ImageSpaceSettings& settings);
 
-/// Everything the frame of `scene` with `settings` allocates on the GPU. `lightMapSize` > 0
-/// stands for the light G-buffers' size when sss.light_map_auto has raised it above
-/// sss.light_map_size (it depends on the geometry, known only once the frame has begun).
-FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize = 0);
+/// Everything the frame of `scene` with `settings` allocates on the GPU. `lightMapSize` and
+/// `mapSize` > 0 stand for the sizes the renderer chose (sss.light_map_auto, or "auto" for
+/// sss.light_map_size and sss.map_size: they depend on the geometry and the camera, known only once
+/// the frame has begun); an "auto" not yet chosen counts as kAutoBudgetSize.
+FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize = 0, int mapSize = 0);
+/// What frameMemory counts for an "auto" size that is not yet chosen (the paper's 512).
+constexpr int kAutoBudgetSize = 512;
 
 /// Throws std::invalid_argument with one line when frameMemory() exceeds the memory the current
 /// GL context's GPU offers (gpu::gpuMemory()), naming the total, the GPU's figure and where it
 /// comes from, and the largest items with the parameters that size them.
-void checkMemoryBudget(const Scene& scene, const RenderSettings& settings, int lightMapSize = 0);
+void checkMemoryBudget(const Scene& scene, const RenderSettings& settings, int lightMapSize = 0, int mapSize = 0);
 
 }  // namespace tallow::sss

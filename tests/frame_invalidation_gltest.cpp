@@ -47,6 +47,7 @@ json otherValue(const app::Registry::Param& p, const json& current) {
   if (current.is_null()) return nullptr;
   if (p.type == "bool") return !current.get<bool>();
   if (p.type == "int") {
+    if (current.is_string()) return static_cast<long long>(p.min) * 2;  // "auto" → a small fixed size
     const long long v = current.get<long long>();
     return v + 1 <= static_cast<long long>(p.max) ? v + 1 : v - 1;
   }

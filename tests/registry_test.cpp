@@ -163,6 +163,26 @@ TEST_F(RegistryTest, FieldEvaluateIsGpuByDefaultAndCpuOnRequest) {
             "field.evaluate: unknown value \"gpus\" (did you mean \"gpu\"?); choices: gpu, cpu");
 }
 
+TEST_F(RegistryTest, MapSizesAreAutoByDefaultAndTakeAnIntegerOrAuto) {
+  for (const char* key : {"sss.map_size", "sss.light_map_size"}) {
+    SCOPED_TRACE(key);
+    EXPECT_EQ(registry.get(config, key), "auto");
+    registry.setFromString(config, std::string(key) + "=256");
+    EXPECT_EQ(registry.get(config, key), 256);
+    registry.setFromString(config, std::string(key) + "= auto");
+    EXPECT_EQ(registry.get(config, key), "auto");
+    registry.set(config, key, 64);
+    EXPECT_EQ(registry.get(config, key), 64);
+    registry.set(config, key, "auto");
+    EXPECT_EQ(registry.get(config, key), "auto");
+  }
+  EXPECT_EQ(config.render.sss.mapSize, sss::kAuto);
+  EXPECT_EQ(setError("sss.map_size", "automatic"), "sss.map_size: expected an integer or \"auto\", got \"automatic\"");
+  EXPECT_EQ(setError("sss.map_size", 8), "sss.map_size: 8 is out of range [16, 8192]");
+  EXPECT_EQ(setError("sss.maps", "auto"), "sss.maps: expected an integer, got \"auto\"");
+  EXPECT_EQ(setStringError("sss.light_map_size=big"), "sss.light_map_size: \"big\" is neither an integer nor auto");
+}
+
 TEST_F(RegistryTest, Vec3ChecksShapeAndEachComponent) {
   EXPECT_EQ(setError("ambient", json::array({1, 2})), "ambient: expected an array of 3 numbers, got [1,2]");
   EXPECT_EQ(setError("ambient", json::array({1, "2", 3})), "ambient: expected an array of 3 numbers, got [1,\"2\",3]");

@@ -109,6 +109,7 @@ struct RowResult {
   std::vector<FramePoint> convergence;
   std::size_t gpuBytes = 0, triangles = 0;
   std::optional<std::size_t> mapsBytes;
+  std::optional<int> mapSize, lightMapSize;  ///< the radiosity maps' sizes in use (what "auto" chose)
   gpu::Image first, last;
   // --equal-time
   std::optional<gpu::ImageError> equalTimeError;
@@ -261,7 +262,11 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
   row.convergedFrames = static_cast<int>(row.convergedMs.size());
   row.gpuBytes = renderer.gpuBytes();
   row.triangles = renderer.triangleCount();
-  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) row.mapsBytes = maps->bytes();
+  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
+    row.mapsBytes = maps->bytes();
+    if (maps->mapSize() > 0) row.mapSize = maps->mapSize();  // 0: the method drew no maps (no-cache)
+    if (maps->lightMapSize() > 0) row.lightMapSize = maps->lightMapSize();
+  }
   return row;
 }
 
@@ -409,6 +414,8 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
                    {"object_pixels", row.lastError.pixels},
                    {"gpu_bytes", row.gpuBytes},
                    {"maps_bytes", row.mapsBytes ? json(*row.mapsBytes) : json(nullptr)},
+                   {"map_size_used", row.mapSize ? json(*row.mapSize) : json(nullptr)},
+                   {"light_map_size_used", row.lightMapSize ? json(*row.lightMapSize) : json(nullptr)},
                    {"triangles", row.triangles}};
     if (row.equalTimeError) {
       values["equal_time_ms"] = row.equalTimeMs;

@@ -84,6 +84,7 @@ nlohmann::json finalSummary(const sss::Renderer& renderer, const Config& config)
     summary = {{"map_bytes", maps->bytes()},
                {"warnings", warnings},
                {"light_map_size", maps->lightMapSize()},
+               {"map_size", maps->mapSize()},
                {"frames_accumulated", maps->frames()},
                {"translucent_pixels", coverage.translucentPixels},
                {"unseen_pixels", coverage.unseenPixels},

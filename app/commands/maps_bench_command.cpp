@@ -181,8 +181,8 @@ int runProbeMaps(const ProbeMapsOptions& o) {
     rows.push_back({{"k", c.k},
                     {"n", c.n},
                     {"k_times_n", c.k * c.n},
-                    {"map_size", settings.sss.mapSize},
-                    {"light_map_size", settings.sss.lightMapSize},
+                    {"map_size", maps->mapSize()},  // as chosen where the preset says auto
+                    {"light_map_size", maps->lightMapSize()},
                     {"lights", scene.lights.size()},
                     {"light_gbuffer_ms", passMs(first, "sss.light_gbuffer")},  // drawn once, in the warm-up
                     {"maps_ms", mapsMedian},
@@ -232,8 +232,9 @@ int runProbeMaps(const ProbeMapsOptions& o) {
       {"settings",
        {{"k", o.maps},
         {"n", o.samples},
-        {"map_size", first.sss.mapSize},
-        {"light_map_size", first.sss.lightMapSize},
+        {"map_size", first.sss.mapSize == sss::kAuto ? nlohmann::json("auto") : nlohmann::json(first.sss.mapSize)},
+        {"light_map_size",
+         first.sss.lightMapSize == sss::kAuto ? nlohmann::json("auto") : nlohmann::json(first.sss.lightMapSize)},
         {"model", std::string(sss::bssrdfModelName(first.sss.model))},
         {"gather", effectiveGather},
         {"width", first.width},

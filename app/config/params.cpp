@@ -58,6 +58,16 @@ Param bind(Param p, Field field) {
   return p;
 }
 
+/// Binds an int parameter that also takes "auto" (RenderSettings' kAuto, 0, in the field): the
+/// renderer chooses the value from the scene (sss.map_size, sss.maps, sss.light_map_size).
+template <typename Field>
+Param bindIntOrAuto(Param p, Field field) {
+  p.acceptsAuto = true;
+  p.getter = [field](const Config& c) { return field(c) == sss::kAuto ? json("auto") : json(field(c)); };
+  p.setter = [field](Config& c, const json& v) { field(c) = v.is_string() ? sss::kAuto : v.get<int>(); };
+  return p;
+}
+
 Param withDefault(Param p, json value) {
   p.defaultValue = std::move(value);
   return p;
@@ -312,14 +322,20 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       4096),
                               8),
                   [](auto& c) -> auto& { return c.render.sss.samples; }));
-  r.add(bind<int>(withDefault(declare("sss.map_size", "int", "texels", "Edge of each scattered radiosity map.", 16,
-                                      8192),
-                              512),
-                  [](auto& c) -> auto& { return c.render.sss.mapSize; }));
-  r.add(bind<int>(withDefault(declare("sss.light_map_size", "int", "texels",
-                                      "Edge of each light's G-buffer (a cube face for point lights).", 16, 8192),
-                              512),
-                  [](auto& c) -> auto& { return c.render.sss.lightMapSize; }));
+  r.add(bindIntOrAuto(withDefault(declare("sss.map_size", "int", "texels",
+                                          "Edge of each scattered radiosity map; auto: a texel no wider than a pixel "
+                                          "of the objects on screen nor than the shortest 1/sigma_tr, as a power of "
+                                          "two in [128, 2048], chosen when the maps restart (docs/radiosity-maps.md).",
+                                          16, 8192),
+                                  "auto"),
+                      [](auto& c) -> auto& { return c.render.sss.mapSize; }));
+  r.add(bindIntOrAuto(withDefault(declare("sss.light_map_size", "int", "texels",
+                                          "Edge of each light's G-buffer (a cube face for point lights); auto: a "
+                                          "texel of a quarter of the shortest 1/sigma_tr over the objects' bounding "
+                                          "sphere, as a power of two in [512, 4096] (point lights: 1024).",
+                                          16, 8192),
+                                  "auto"),
+                      [](auto& c) -> auto& { return c.render.sss.lightMapSize; }));
   r.add(bind<float>(withDefault(declare("sss.bias", "float", "× radius",
                                         "ε_bias: depth offset of the radiosity maps' visibility test (Algorithm 1), in "
                                         "units of the translucent objects' bounding radius.", 0, 1),

@@ -82,7 +82,10 @@ json checkParamValue(const Registry::Param& p, const json& value) {
     return value;
   }
   if (p.type == "int") {
-    if (!value.is_number_integer()) throw InputError("expected an integer, got " + describe(value));
+    if (p.acceptsAuto && value.is_string() && value.get_ref<const std::string&>() == "auto") return value;
+    if (!value.is_number_integer())
+      throw InputError(std::string(p.acceptsAuto ? "expected an integer or \"auto\"" : "expected an integer") +
+                       ", got " + describe(value));
     const double v = value.is_number_unsigned() ? static_cast<double>(value.get<std::uint64_t>())
                                                 : static_cast<double>(value.get<std::int64_t>());
     checkRange(p, v);
@@ -194,8 +197,9 @@ json Registry::parseValue(std::string_view key, std::string_view valueText) cons
     else failParam(p, "expected true/false, 1/0 or on/off, got " + quote(text));
   } else if (p.type == "int") {
     const auto v = parseWhole<std::int64_t>(text);
-    if (!v) failParam(p, quote(text) + " is not an integer");
-    value = *v;
+    if (p.acceptsAuto && text == "auto") value = "auto";
+    else if (!v) failParam(p, quote(text) + (p.acceptsAuto ? " is neither an integer nor auto" : " is not an integer"));
+    else value = *v;
   } else if (p.type == "float") {
     const auto v = parseWhole<double>(text);
     if (!v) failParam(p, quote(text) + " is not a number");

@@ -24,6 +24,8 @@ class Registry {
     double min = 0.0;   ///< int, float: inclusive range; vec3: per component; unused otherwise
     double max = 0.0;
     std::vector<std::string> choices;  ///< enum only
+    /// int only: the string "auto" is a value too, and the renderer chooses (sss.map_size=auto).
+    bool acceptsAuto = false;
     /// Absent for scene-bound parameters, whose value comes from the preset.
     std::optional<nlohmann::json> defaultValue;
 

@@ -11,6 +11,11 @@ uniform float uEpsBias;                // ε_bias, world units
 uniform float uEpsComb;                // ε_comb, world units
 uniform float uViewWeight;             // p of the weight cos^p θ of a map seeing x_o at θ (0: the paper)
 uniform sampler2DArray uMaps;          // Σ over frames of B_N, with mipmaps
+// The widest footprint, in map texture units, that a look-up filters over: half the shortest
+// diffusion length 1/σ_tr. B varies on that scale; a pixel wider than it (a large object far away)
+// would otherwise average B over its whole footprint (more still on a map that sees x_o at a
+// grazing angle), where the camera, like the reference, takes B at the pixel's centre (issue 17).
+uniform float uMaxFootprint;
 uniform sampler2DArrayShadow uMapDepth;
 struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // depthScale.x: depth units per metre
 layout(std430, binding = 5) readonly buffer MapViews { MapViewGpu mapViews[]; };
@@ -27,6 +32,11 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     vec3 x = xo - uEpsComb * (no - cosTheta * d);
     vec4 t = mapViews[k].toTexture * vec4(x, 1.0);
     vec2 dx = (mapViews[k].toTexture * vec4(dpdx, 0.0)).xy, dy = (mapViews[k].toTexture * vec4(dpdy, 0.0)).xy;
+    float footprint = max(length(dx), length(dy));
+    if (footprint > uMaxFootprint) {
+      dx *= uMaxFootprint / footprint;
+      dy *= uMaxFootprint / footprint;
+    }
     float z = t.z - uEpsBias * mapViews[k].depthScale.x;
     vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
     float v = 0.25 * (texture(uMapDepth, vec4(t.xy + vec2(-texel.x, -texel.y), float(k), z)) +

@@ -26,6 +26,9 @@ void append(std::vector<std::string>& to, const std::vector<std::string>& from) 
 
 RadiosityMaps& maps(FrameContext& context) { return context.modules.obtain<RadiosityMaps>(context.shaders); }
 
+/// A size setting as --explain prints it: the texels, or "auto" (chosen when the pass runs).
+std::string sizeText(int size) { return size == kAuto ? std::string("auto") : std::to_string(size); }
+
 }  // namespace
 
 // --- sss.light_gbuffer ----------------------------------------------------------------------------
@@ -33,7 +36,7 @@ RadiosityMaps& maps(FrameContext& context) { return context.modules.obtain<Radio
 std::string LightGBufferPass::reason(const FrameState& state) const {
   return std::to_string(countLights(state.scene, LightKind::Directional)) + " directional (orthographic layer) and " +
          std::to_string(countLights(state.scene, LightKind::Point)) + " point (cube) light G-buffer(s), " +
-         std::to_string(state.settings.sss.lightMapSize) + "^2, one layered pass each kind";
+         sizeText(state.settings.sss.lightMapSize) + "^2, one layered pass each kind";
 }
 
 PassIo LightGBufferPass::io(const FrameState&) const {
@@ -55,7 +58,7 @@ std::string RadiosityMapsPass::reason(const FrameState& state) const {
   const SssSettings& s = state.settings.sss;
   return std::to_string(mapCount(state.scene, state.settings)) +
          (state.scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") + " scattered radiosity maps of " +
-         std::to_string(s.mapSize) + "^2: depth pre-pass, then " + std::to_string(s.samples) +
+         sizeText(s.mapSize) + "^2: depth pre-pass, then " + std::to_string(s.samples) +
          " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
          " dipole), accumulated until " + std::to_string(s.frames) + " frames";
 }
@@ -145,7 +148,7 @@ void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& conte
   const GLuint mapsUnit = firstUnit, depthUnit = firstUnit + 1, vplShadowUnit = firstUnit + 2;
   const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
   if (active && maps && shading(context.state) == SurfaceShading::Algorithm1) {
-    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit);
+    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true);
   } else {
     p.set("uMaps", static_cast<int>(mapsUnit));
     p.set("uMapDepth", static_cast<int>(depthUnit));

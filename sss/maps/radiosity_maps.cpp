@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "sss/maps/map_history.h"
+#include "sss/maps/map_resolution.h"
 #include "sss/maps/radiosity_estimator.h"
 #include "sss/memory_budget.h"
 #include "sss/view_setup.h"
@@ -138,10 +139,13 @@ std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRa
 }
 
 int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize) {
-  int size = settings.sss.lightMapSize;
-  if (!settings.sss.lightMapAuto) return size;
   const double shortest = shortestDiffusionLengthMm(scene);  // mm
   const double diameterMm = 2.0 * static_cast<double>(sphereRadius) * 1000.0;
+  const bool point = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                 [](const Light& l) { return l.kind == LightKind::Point; });
+  int size = settings.sss.lightMapSize == kAuto ? autoLightMapSize(diameterMm, shortest, point, maxSize)
+                                                : settings.sss.lightMapSize;
+  if (!settings.sss.lightMapAuto) return size;
   const int cap = std::min(maxSize, 8192);
   while (size < cap && diameterMm / size > shortest) size *= 2;
   return std::min(size, cap);
@@ -246,12 +250,13 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].translucent) slots_[i] = slot++;
   sphere_ = translucentBounds(scene, geometry);
+  shortestDiffusionMm_ = shortestDiffusionLengthMm(scene);
   GLint maxTexture = 0, maxCube = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
   lightMapSize_ = effectiveLightMapSize(scene, settings, sphere_.radius, std::min(maxTexture, maxCube));
   // sss.light_map_auto sizes the G-buffers from the geometry, so only now can the budget count them.
-  if (lightMapSize_ != settings.sss.lightMapSize) checkMemoryBudget(scene, settings, lightMapSize_);
+  if (lightMapSize_ != settings.sss.lightMapSize) checkMemoryBudget(scene, settings, lightMapSize_, mapSize_);
 
   std::vector<int> dirLights, pointLights;
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
@@ -399,11 +404,12 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
 }
 
 void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings& settings, GLuint mapsUnit,
-                                          GLuint depthUnit) const {
+                                          GLuint depthUnit, bool pixelLookups) const {
   constexpr GLuint kMapViewsBinding = 5;  // shaders/maps/algorithm1.glsl
   // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
   const float radius = sphere_.radius;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, cameraViews_.id());
+  p.set("uMaxFootprint", pixelLookups ? maxMapFootprint(shortestDiffusionMm_, viewSphere_.radius) : 1e30f);
   p.set("uMapCount", static_cast<int>(views_.size()));
   p.set("uEpsBias", settings.sss.bias * radius);
   p.set("uEpsComb", settings.sss.comb * radius);
@@ -422,7 +428,20 @@ bool RadiosityMaps::viewsHold(const BoundingSphere& sphere) const {
 void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                                MapsUpdate update) {
   const SssSettings& s = settings.sss;
-  const int k = mapCount(scene, settings), size = s.mapSize;
+  const int k = mapCount(scene, settings);
+  // sss.map_size=auto is chosen at a restart (from the camera then), and kept while the maps
+  // accumulate or reuse their history: a camera move alone never restarts them.
+  if (update == MapsUpdate::Restart || frames_ == 0 || mapSize_ == 0) {
+    mapSize_ = s.mapSize;
+    if (s.mapSize == kAuto) {
+      GLint maxTexture = 0;
+      glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+      const double pixels = projectedDiameterPixels(scene.camera, settings.height, sphere_);
+      mapSize_ = autoMapSize(2.0 * sphere_.radius * 1000.0, shortestDiffusionMm_, pixels, maxTexture);
+      if (mapSize_ != maps_.width()) checkMemoryBudget(scene, settings, lightMapSize_, mapSize_);
+    }
+  }
+  const int size = mapSize_;
   const bool history = s.history > 0;
   // Reuse needs the views it was made with and the last frame's G-buffer at this K and size.
   if (update == MapsUpdate::Reuse &&

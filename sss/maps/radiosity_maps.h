@@ -75,9 +75,9 @@ struct PearlingWarning {
   double texelMm = 0.0;         ///< world size of one directional light G-buffer texel
 };
 std::vector<PearlingWarning> pearlingWarnings(const Scene& scene, float sphereRadius, int lightMapSize);
-/// The light G-buffer size the renderer uses: sss.light_map_size, or with sss.light_map_auto the
-/// smallest power of two at least that large whose texel is ≤ the shortest 1/σ_tr of the
-/// translucent objects, capped at `maxSize`.
+/// The light G-buffer size the renderer uses: sss.light_map_size (auto: autoLightMapSize), or with
+/// sss.light_map_auto the smallest power of two at least that large whose texel is ≤ the shortest
+/// 1/σ_tr of the translucent objects, capped at `maxSize`.
 int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, float sphereRadius, int maxSize);
 
 /// What step 2 does with the maps this frame.
@@ -116,6 +116,7 @@ class RadiosityMaps {
   /// per texel, the maps' alpha holds its own count)
   int frames() const { return frames_; }
   int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
+  int mapSize() const { return mapSize_; }  ///< the maps' size in use (sss.map_size, or what auto chose)
   const std::vector<MapView>& views() const { return views_; }
   /// The K views as shaders/maps/algorithm1.glsl's MapViewGpu array (std430: world → [0,1]³,
   /// direction, depth units per metre), built once per accumulation with the views.
@@ -136,9 +137,11 @@ class RadiosityMaps {
                          int frame) const;
   /// Everything shaders/maps/algorithm1.glsl reads (the K views on its storage binding, K, F, ε_bias,
   /// ε_comb, the view weight; the maps and their depth on texture units mapsUnit and depthUnit),
-  /// for a program that includes it: the camera pass and the VPL pass.
+  /// for a program that includes it: the camera pass and the VPL pass. `pixelLookups`: the caller
+  /// passes a pixel's footprint (the camera pass), which is then filtered over at most half the
+  /// shortest 1/σ_tr (maxMapFootprint); the VPL pass passes a VPL's patch and averages over all of it.
   void setAlgorithm1Uniforms(gpu::Program& program, const RenderSettings& settings, GLuint mapsUnit,
-                             GLuint depthUnit) const;
+                             GLuint depthUnit, bool pixelLookups) const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
   const std::vector<int>& slots() const { return slots_; }
   /// The directional light G-buffers (tests): normals, and per directional light (scene order of
@@ -174,6 +177,8 @@ class RadiosityMaps {
   int frames_ = 0;
   int seed_ = 0;  ///< frames since the last restart: the estimator's frame seed (never repeats on a reuse)
   int lightMapSize_ = 0;
+  int mapSize_ = 0;                ///< chosen at each restart (sss.map_size=auto: sss/maps/map_resolution.h)
+  double shortestDiffusionMm_ = 0; ///< of the translucent materials, at the last light G-buffers
 };
 
 }  // namespace tallow::sss

@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""Issue 17, point 4: "only what the scene needs". The marble bunny at 0.01, 0.1 and 1 m (the camera
+moved with it, as in the equal-time section) with the map and light G-buffer sizes fixed at the
+paper's 512 and chosen by `auto` (sss/maps/map_resolution.h), against `tallow reference` of each
+scale: error, bias per half, fireflies, time; the docs/RESULTS.md section they become.
+
+  results_auto.py run DIR [--quick]   renders the references and the benches into DIR (TALLOW: the binary)
+  results_auto.py report DIR MD       appends the section to MD
+  results_auto.py splice DIR MD       replaces the section in MD (or adds it before the GPU section)
+
+Called by scripts/results.sh (run, report). Every number comes from the benches' bench.json and the
+references' logs.
+"""
+import json
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results_sections  # noqa: E402
+
+HEADING = "## Map sizes from the scene (issue 17, point 4)"
+SIZE = "160x120"
+SCALES = (0.01, 0.1, 1.0)
+# presets/bunny.json's camera (position, target) for the 0.1 m bunny; scaled with the bunny.
+BUNNY_CAMERA = ((0.05, 0.13, 0.32), (0.0, 0.045, 0.0))
+REF_REL_ERROR = "0.04"
+FRAMES = 16  # sss.frames: the maps converge; the bench's last frame is the converged one
+
+
+def call(cmd, out_file):
+    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and os.path.exists(out_file):
+        print("results: kept", out_file, flush=True)
+        return
+    print("results:", " ".join(cmd), flush=True)
+    subprocess.run(cmd, check=True)
+
+
+def scene_args(scale):
+    f = scale / 0.1
+    return ["--preset", "bunny", "--set", "scale=%g" % scale,
+            "--set", "camera.position=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[0]),
+            "--set", "camera.target=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[1])]
+
+
+def run(work, quick):
+    binary = os.environ.get("TALLOW", "tallow")
+    size = "64x48" if quick else SIZE
+    frames = 2 if quick else FRAMES
+    for scale in SCALES:
+        d = os.path.join(work, "scale_%g" % scale)
+        os.makedirs(d, exist_ok=True)
+        ref = os.path.join(d, "ref.exr")
+        call([binary, "reference", *scene_args(scale), "--size", size,
+              *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref)
+        call([binary, "bench", *scene_args(scale), "--size", size, "--reference", ref, "--methods", "radiosity-maps",
+              "--set", "sss.frames=%d" % frames, "--frames", str(frames + 2),
+              "--sweep", "sss.map_size=512,auto", "--sweep", "sss.light_map_size=512,auto",
+              "--out", os.path.join(d, "bench")], os.path.join(d, "bench", "bench.json"))
+
+
+def pct(x):
+    return "—" if x is None else "%.1f%%" % (100 * x)
+
+
+def fmt(x, d=3):
+    return "—" if x is None else "%.*f" % (d, x)
+
+
+def load(work):
+    out = {}
+    for scale in SCALES:
+        with open(os.path.join(work, "scale_%g" % scale, "bench", "bench.json")) as f:
+            out[scale] = json.load(f)
+    return out
+
+
+def label(row):
+    p = row["parameters"]
+    return "map %s, light %s" % (p["sss.map_size"], p["sss.light_map_size"])
+
+
+def section(work):
+    benches = load(work)
+    lines = []
+    add = lines.append
+    first = benches[SCALES[0]]
+    add(HEADING)
+    add("")
+    add("`sss.map_size=auto` and `sss.light_map_size=auto` (the defaults) choose the sizes from the scene")
+    add("(`sss/maps/map_resolution.h`): a map texel no wider than a pixel of the objects' bounding sphere on")
+    add("screen nor than the shortest diffusion length 1/σ_tr; a light G-buffer texel of a quarter of the")
+    add("shortest 1/σ_tr; powers of two, maps in [128, 2048], light G-buffers in [512, 4096]. And Algorithm 1")
+    add("filters a map over a pixel's footprint only up to half the shortest 1/σ_tr (`uMaxFootprint`,")
+    add("`shaders/maps/algorithm1.glsl`): before, a pixel wider than that, as on the 1 m bunny, took the mean of")
+    add("B over its whole footprint (more on a map seeing x_o at a grazing angle) where the reference takes B at")
+    add("the pixel's centre; that blur and the light G-buffer's 2.7 mm texels, under one 1/σ_tr of blue marble")
+    add("(4.0 mm), made the 1 m bunny's 18.3% in the equal-time section.")
+    add("")
+    add("Marble bunny, %s, the camera moved with it; K = 16, N = 8, `sss.frames` = %d; each scale against its"
+        % (SIZE, FRAMES))
+    prov = first.get("provenance", {})
+    add("own `tallow reference` (ε below). Device `%s`, %s hardware threads: compare wall times within a scale."
+        % (prov.get("gl", {}).get("GL_RENDERER", "?"), prov.get("cpu", {}).get("hardware_threads", "?")))
+    add("`upper`/`lower`: the mean over the upper or lower half of the object's pixels against the reference's;")
+    add("fireflies: object pixels with a channel above 4× its 5×5 median (the reference's own count beside).")
+    add("")
+    add("| scale [m] | sizes | chosen map / light | converged rel. RMSE | upper / lower | fireflies (ref.) | median wall per accumulating frame [ms] | reference ε |")
+    add("|---|---|---|---:|---:|---:|---:|---:|")
+    verdict = {}
+    for scale in SCALES:
+        for row in benches[scale]["rows"]:
+            add("| %g | %s | %s / %s | %s | %s / %s | %s (%s) | %s | %s |" % (
+                scale, label(row), row.get("map_size_used", "—"), row.get("light_map_size_used", "—"),
+                pct(row["last_rel_rmse"]), fmt(row.get("last_upper_mean_ratio")), fmt(row.get("last_lower_mean_ratio")),
+                row.get("last_fireflies", "—"), row.get("reference_fireflies", "—"),
+                fmt(row.get("median_accumulating_wall_ms"), 0), pct(row.get("reference_rel_error"))))
+            verdict[(scale, row["parameters"]["sss.map_size"], row["parameters"]["sss.light_map_size"])] = row
+    add("")
+    fixed = {s: verdict.get((s, 512, 512)) for s in SCALES}
+    auto = {s: verdict.get((s, "auto", "auto")) for s in SCALES}
+    for s in SCALES:
+        if fixed[s] and auto[s]:
+            add("- %g m: fixed 512 / 512 %s in %s ms per frame; auto (%s / %s) %s in %s ms per frame (%.2f× the time)."
+                % (s, pct(fixed[s]["last_rel_rmse"]), fmt(fixed[s]["median_accumulating_wall_ms"], 0),
+                   auto[s].get("map_size_used"), auto[s].get("light_map_size_used"), pct(auto[s]["last_rel_rmse"]),
+                   fmt(auto[s]["median_accumulating_wall_ms"], 0),
+                   auto[s]["median_accumulating_wall_ms"] / fixed[s]["median_accumulating_wall_ms"]))
+    big, small = auto.get(1.0), (auto.get(0.01), fixed.get(0.01))
+    if big:
+        add("- Target: the 1 m bunny under 10%%: **%s** (%s)." % (pct(big["last_rel_rmse"]),
+                                                              "met" if big["last_rel_rmse"] < 0.10 else "not met"))
+    if all(small):
+        faster = small[0]["median_accumulating_wall_ms"] <= small[1]["median_accumulating_wall_ms"]
+        add("- Target: the 0.01 m bunny not slower: auto %s ms against fixed %s ms per frame (%s)." % (
+            fmt(small[0]["median_accumulating_wall_ms"], 0), fmt(small[1]["median_accumulating_wall_ms"], 0),
+            "met" if faster else "not met"))
+    add("")
+    return lines
+
+
+def main(argv):
+    if len(argv) >= 3 and argv[1] == "run":
+        run(argv[2], "--quick" in argv[3:])
+    elif len(argv) == 4 and argv[1] == "report":
+        results_sections.append(argv[3], section(argv[2]))
+    elif len(argv) == 4 and argv[1] == "splice":
+        results_sections.splice(argv[3], HEADING, section(argv[2]))
+    else:
+        sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
