@@ -9,7 +9,9 @@
 # `tallow probe placement` (issue 16, point 4: dual contouring's vertex placements against the exact
 # surface, scripts/results_placement.py) and of `tallow capture` on the animated candle and blob with
 # the fields evaluated on the CPU and on the GPU (issue 16, point 7, scripts/results_fields.py) and
-# with the maps restarted or kept while they move (issue 17, point 3, scripts/results_history.py). Every
+# with the maps restarted or kept while they move (issue 17, point 3, scripts/results_history.py), and
+# the bunny at three scales with the map sizes fixed and chosen (issue 17, point 4,
+# scripts/results_auto.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -54,6 +56,9 @@ TALLOW="$tallow" python3 "$root/scripts/results_fields.py" run "$work/fields" ${
 # Issue 17, point 3: frame k of the animated blob and candle against the reference at t_k, the maps
 # restarted at every frame against kept per texel (sss.history).
 TALLOW="$tallow" python3 "$root/scripts/results_history.py" run "$work/history" ${quick:+--quick}
+# Issue 17, point 4: the map and light G-buffer sizes chosen from the scene (auto) against the fixed
+# 512, the marble bunny at 0.01, 0.1 and 1 m.
+TALLOW="$tallow" python3 "$root/scripts/results_auto.py" run "$work/auto" ${quick:+--quick}
 
 python3 - "$work/extraction.json" "$root/docs/RESULTS.md.tmp" "$repeats" "$(nproc 2>/dev/null || echo '?')" "$work/maps.json" "$work/gather_fragment.json" "$work/gather_compute.json" <<'PY'
 import json, sys, datetime, platform
@@ -217,6 +222,7 @@ python3 "$root/scripts/results_bench.py" report "$work/bench" "$root/docs/RESULT
 python3 "$root/scripts/results_placement.py" "$work/placement.json" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_fields.py" report "$work/fields" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_history.py" report "$work/history" "$root/docs/RESULTS.md.tmp"
+python3 "$root/scripts/results_auto.py" report "$work/auto" "$root/docs/RESULTS.md.tmp"
 # Issue 18: a GPU run of the device bench, copied into docs/gpu/, or the statement that none exists.
 python3 "$root/scripts/results_bench.py" gpu "$root/docs/gpu" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"

@@ -54,14 +54,18 @@ TEST(MapResolution, ProjectedDiameterMatchesAPerspectiveProjection) {
 }
 
 TEST(MapResolution, TheBunnyAtOneCentimetreAndOneMetre) {
-  // 0.01 m: a 14 mm sphere, 60 px on screen, 1/σ_tr 4 mm: the screen decides, under the 128 floor.
-  EXPECT_EQ(autoMapSize(14.0, kMarbleBlueMm, 60.0, 16384), 128);
+  // 0.01 m: a 14 mm sphere, 80 px on screen, 1/σ_tr 4 mm: the screen decides, two texels a pixel.
+  EXPECT_EQ(autoMapSize(14.0, kMarbleBlueMm, 80.0, 16384), 256);
+  EXPECT_EQ(autoMapSize(14.0, kMarbleBlueMm, 30.0, 16384), 128) << "the floor";
   // 1 m: 1400 mm / 3.95 mm = 354 texels across for the diffusion length, 60 px on screen: 512.
   EXPECT_EQ(autoMapSize(1400.0, kMarbleBlueMm, 60.0, 16384), 512);
-  // The same bunny filling a 1080p screen: the screen decides, 1500 px → 2048 (the cap).
-  EXPECT_EQ(autoMapSize(1400.0, kMarbleBlueMm, 1500.0, 16384), 2048);
-  EXPECT_EQ(autoMapSize(1400.0, kMarbleBlueMm, 5000.0, 16384), 2048);
-  EXPECT_EQ(autoMapSize(1400.0, kMarbleBlueMm, 5000.0, 1024), 1024) << "the GPU's texture limit";
+  // The same bunny filling a 1080p screen: the screen asks for at most 512.
+  EXPECT_EQ(autoMapSize(1400.0, kMarbleBlueMm, 800.0, 16384), 512);
+  EXPECT_EQ(autoMapSize(140.0, kMarbleBlueMm, 800.0, 16384), 512);
+  // 5 m of marble: 7000 / 3.95 mm = 1772 texels for the diffusion length → 2048, the cap.
+  EXPECT_EQ(autoMapSize(7000.0, kMarbleBlueMm, 60.0, 16384), 2048);
+  EXPECT_EQ(autoMapSize(70000.0, kMarbleBlueMm, 60.0, 16384), 2048);
+  EXPECT_EQ(autoMapSize(7000.0, kMarbleBlueMm, 60.0, 1024), 1024) << "the GPU's texture limit";
   // Light G-buffers: 4 × 1400 / 3.95 = 1417 → 2048 for a directional light, 1024 for a point light's
   // cube; the 0.1 m bunny keeps the paper's 512.
   EXPECT_EQ(autoLightMapSize(1400.0, kMarbleBlueMm, false, 16384), 2048);
@@ -80,8 +84,8 @@ TEST(MapResolution, EveryChoiceIsAPowerOfTwoMeetingBothBoundsOrAtTheCap) {
     ASSERT_EQ(size & (size - 1), 0) << size;
     ASSERT_GE(size, sss::kAutoMapMin);
     ASSERT_LE(size, sss::kAutoMapMax);
-    const double need = std::max(pixels, diameter / diffusion);
-    if (size < sss::kAutoMapMax) ASSERT_GE(size, need) << "a texel no wider than a pixel or 1/σ_tr";
+    const double need = std::max(std::min(2.0 * pixels, 512.0), diameter / diffusion);
+    if (size < sss::kAutoMapMax) ASSERT_GE(size, need) << "a texel no wider than half a pixel or 1/σ_tr";
     if (size > sss::kAutoMapMin) ASSERT_LT(size / 2, need) << "and no finer than that";
   }
 }

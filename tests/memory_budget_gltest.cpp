@@ -46,7 +46,8 @@ TEST_P(MemoryBudget, FiguresEqualTheBytesOfTheAllocatedObjects) {
   const sss::RenderSettings& settings = session.settings();
   const sss::RadiosityMaps* maps = renderer.radiosityMaps();
   const int lightMapSize = maps ? maps->lightMapSize() : 0;
-  const sss::FrameMemory budget = sss::frameMemory(scene, settings, lightMapSize);
+  const int mapSize = maps ? maps->mapSize() : 0;  // what sss.map_size=auto chose, or the setting
+  const sss::FrameMemory budget = sss::frameMemory(scene, settings, lightMapSize, mapSize);
 
   // Everything but the static meshes, whose size comes from their files rather than the settings.
   EXPECT_EQ(budget.total(), renderer.gpuBytes() - renderer.geometry().bytes());
@@ -55,7 +56,7 @@ TEST_P(MemoryBudget, FiguresEqualTheBytesOfTheAllocatedObjects) {
   if (maps && sss::RadiosityMaps::needsLightGBuffers(scene, settings)) {
     const int k = sss::RadiosityMaps::applies(scene, settings) ? sss::mapCount(scene, settings) : 0;
     EXPECT_EQ(maps->bytes(), sss::lightGBufferBytes(dir, point, lightMapSize) +
-                                 sss::radiosityMapBytes(k, settings.sss.mapSize, settings.sss.computeGather,
+                                 sss::radiosityMapBytes(k, mapSize, settings.sss.computeGather,
                                                          settings.sss.history > 0));
   }
   if (const sss::VirtualPointLights* vpls = renderer.virtualPointLights()) {
@@ -79,6 +80,8 @@ INSTANTIATE_TEST_SUITE_P(
         BudgetCase{"bunny", {"sss.gather=fragment"}},
         // sss.light_map_auto raises the light G-buffers above sss.light_map_size from the geometry.
         BudgetCase{"bunny", {"sss.light_map_auto=true"}},
+        // auto sizes, chosen from the geometry and the camera once the frame has begun.
+        BudgetCase{"bunny", {"sss.map_size=auto", "sss.light_map_size=auto"}},
         BudgetCase{"bunny", {"method=no-cache"}},
         BudgetCase{"bunny", {"method=image-space", "image_space.samples=4"}},
         BudgetCase{"slab", {"method=sslpv", "sslpv.grid=8", "sslpv.inject_size=16"}}),

@@ -323,9 +323,10 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                               8),
                   [](auto& c) -> auto& { return c.render.sss.samples; }));
   r.add(bindIntOrAuto(withDefault(declare("sss.map_size", "int", "texels",
-                                          "Edge of each scattered radiosity map; auto: a texel no wider than a pixel "
-                                          "of the objects on screen nor than the shortest 1/sigma_tr, as a power of "
-                                          "two in [128, 2048], chosen when the maps restart (docs/radiosity-maps.md).",
+                                          "Edge of each scattered radiosity map; auto: a texel no wider than half a "
+                                          "pixel of the objects on screen (asking at most 512) nor than the shortest "
+                                          "1/sigma_tr, as a power of two in [128, 2048], chosen when the maps restart "
+                                          "(docs/radiosity-maps.md).",
                                           16, 8192),
                                   "auto"),
                       [](auto& c) -> auto& { return c.render.sss.mapSize; }));

@@ -24,7 +24,11 @@ double projectedDiameterPixels(const Camera& camera, int height, const BoundingS
 int autoMapSize(double diameterMm, double shortestDiffusionMm, double projectedPixels, int maxSize) {
   const double diffusion = diameterMm / std::max(shortestDiffusionMm, 1e-9);
   const int hi = std::max(kAutoMapMin, std::min(kAutoMapMax, maxSize));
-  return powerOfTwoAtLeast(std::max(projectedPixels, diffusion), kAutoMapMin, hi);
+  // Two texels per pixel: B is taken between texel centres, bilinearly (the 0.01 m bunny at 160x120,
+  // converged: 5.8% with one texel per pixel, 4.7% with two, 4.6% with four). The screen asks for at
+  // most the paper's 512: the default candle at 960x540 would take 1024 (1 GB of maps, 4x the time).
+  const double screen = std::min(2.0 * projectedPixels, static_cast<double>(kAutoMapScreenMax));
+  return powerOfTwoAtLeast(std::max(screen, diffusion), kAutoMapMin, hi);
 }
 
 int autoLightMapSize(double diameterMm, double shortestDiffusionMm, bool pointLight, int maxSize) {

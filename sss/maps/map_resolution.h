@@ -4,10 +4,12 @@
 // (issue 17, point 4: only what the scene needs). Measured in docs/RESULTS.md ("Map sizes from the
 // scene"), by scripts/results_auto.py.
 //
-// - A map texel should be no wider than what the camera resolves there: one pixel of the bounding
-//   sphere's projection, so the sphere's diameter in pixels. And no wider than the diffusion length
-//   1/σ_tr where B changes: the sphere's diameter over the shortest 1/σ_tr. The larger of the two
-//   counts, as a power of two in [kAutoMapMin, kAutoMapMax].
+// - A map texel should be no wider than half of what the camera resolves there: half a pixel of the
+//   bounding sphere's projection, so twice the sphere's diameter in pixels (B is interpolated between
+//   texel centres). And no wider than the diffusion length 1/σ_tr where B changes: the sphere's
+//   diameter over the shortest 1/σ_tr. The larger of the two counts, as a power of two in
+//   [kAutoMapMin, kAutoMapMax]; the screen's count at most the paper's 512 (kAutoMapScreenMax: "a
+//   size of 512 x 512 is fine for most application", §5), only the diffusion length asks for more.
 // - A light G-buffer texel should be a quarter of the shortest 1/σ_tr (the paper's §5 pearling
 //   appears at one 1/σ_tr; its figures use 512, "1024 in problematic cases"), at least 512 (the
 //   paper's size) and at most 4096 for directional lights, 1024 for point lights (a cube of six faces).
@@ -18,6 +20,7 @@ namespace tallow::sss {
 
 constexpr int kAutoMapMin = 128;
 constexpr int kAutoMapMax = 2048;
+constexpr int kAutoMapScreenMax = 512;
 constexpr int kAutoLightMin = 512;
 constexpr int kAutoLightMax = 4096;
 constexpr int kAutoPointLightMax = 1024;
@@ -30,7 +33,7 @@ int powerOfTwoAtLeast(double x, int lo, int hi);
 /// 2r / orthoHeight × height. Screen coverage, as one length.
 double projectedDiameterPixels(const Camera& camera, int height, const BoundingSphere& sphere);
 
-/// sss.map_size=auto: powerOfTwoAtLeast(max(pixels, diameter / shortest 1/σ_tr)) in
+/// sss.map_size=auto: powerOfTwoAtLeast(max(min(2 × pixels, 512), diameter / shortest 1/σ_tr)) in
 /// [kAutoMapMin, min(kAutoMapMax, maxSize)].
 int autoMapSize(double diameterMm, double shortestDiffusionMm, double projectedPixels, int maxSize);
 /// sss.light_map_size=auto: powerOfTwoAtLeast(4 × diameter / shortest 1/σ_tr) in [kAutoLightMin,
