@@ -19,6 +19,7 @@ namespace tallow::glsl {
 namespace tallow {
 namespace {
 
+using glsl::DC_CELL_MARGIN;
 using glsl::DC_QEF_SIGMA_N;
 using glsl::DcQuadric;
 
@@ -131,17 +132,34 @@ TEST(DcQef, MinimumOutsideTheCellIsBroughtBackAlongTheSegmentFromTheMassPoint) {
   ASSERT_TRUE(x.y < 0.0f || x.y > 1.0f || x.z < 0.0f || x.z > 1.0f) << "the test needs a minimum outside the cell";
   const glm::vec3 v = glsl::dcQuadricVertex(q, DC_QEF_SIGMA_N);
   for (int j = 0; j < 3; ++j) {
-    EXPECT_GE(v[j], 0.0f);
-    EXPECT_LE(v[j], 1.0f);
+    EXPECT_GE(v[j], DC_CELL_MARGIN);
+    EXPECT_LE(v[j], 1.0f - DC_CELL_MARGIN);
   }
-  // On the segment m → x, and on the cell's boundary.
+  // On the segment m → x, and DC_CELL_MARGIN inside the cell's boundary.
   const glm::vec3 d = x - m;
   const float t = glm::dot(v - m, d) / glm::dot(d, d);
   EXPECT_GT(t, 0.0f);
   EXPECT_LT(t, 1.0f);
   EXPECT_LT(glm::length(m + t * d - v), 1e-5f);
-  EXPECT_NEAR(std::min({v.y, 1.0f - v.y, v.z, 1.0f - v.z}), 0.0f, 1e-6f);
+  EXPECT_NEAR(std::min({v.y, 1.0f - v.y, v.z, 1.0f - v.z}), DC_CELL_MARGIN, 1e-6f);
   EXPECT_LT(quadricValue(planes, v, DC_QEF_SIGMA_N), quadricValue(planes, m, DC_QEF_SIGMA_N));
+}
+
+// Neighbouring cells' vertices never meet: whatever the minimum and the mass point (on a face, as
+// when every crossing lies on it), the vertex stays DC_CELL_MARGIN inside, so the vertices of two
+// cells sharing a face are at least twice that apart across it.
+TEST(DcQef, VerticesStayAMarginInsideTheirCell) {
+  const glm::vec3 onFace(0.3f, 1.0f, 0.6f), outside(0.5f, 1.7f, 0.4f), inside(0.4f, 0.5f, 0.5f);
+  for (const auto& [m, x] : {std::pair{onFace, outside}, std::pair{onFace, onFace}, std::pair{inside, outside},
+                             std::pair{glm::vec3(0.0f), glm::vec3(-1.0f, 2.0f, 0.5f)}}) {
+    const glm::vec3 v = glsl::dcKeepInCell(m, x);
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_GE(v[j], DC_CELL_MARGIN) << j;
+      EXPECT_LE(v[j], 1.0f - DC_CELL_MARGIN) << j;
+    }
+  }
+  // A minimum inside the margin box is kept as it is.
+  EXPECT_EQ(glsl::dcKeepInCell(inside, glm::vec3(0.2f, 0.7f, 0.9f)), glm::vec3(0.2f, 0.7f, 0.9f));
 }
 
 // The lattice derivative: central on smooth samples (exact for a quadratic), one-sided away from a
