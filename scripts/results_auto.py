@@ -28,19 +28,8 @@ REF_REL_ERROR = "0.04"
 FRAMES = 16  # sss.frames: the maps converge; the bench's last frame is the converged one
 
 
-def whole(out_file):
-    """An interrupted bench writes the rows it finished (docs/commands.md): only all four count."""
-    if not out_file.endswith("bench.json"):
-        return os.path.exists(out_file)
-    try:
-        with open(out_file) as f:
-            return len(json.load(f).get("rows", [])) == 4
-    except (OSError, ValueError):
-        return False
-
-
 def call(cmd, out_file):
-    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and whole(out_file):
+    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and results_sections.whole(out_file):
         print("results: kept", out_file, flush=True)
         return
     print("results:", " ".join(cmd), flush=True)

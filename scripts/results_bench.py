@@ -20,6 +20,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results_sections  # noqa: E402
+
 MATERIALS = ["Marble", "White Grapefruit Juice", "Strawberry Shampoo"]
 # The bunny lit from low on its left: the grazing case of the paper's §4 / Fig. 8.
 GRAZING_LIGHT = "-0.97,0.17,0.17"
@@ -36,7 +39,7 @@ def finished(args):
     if os.environ.get("TALLOW_RESULTS_RESUME") != "1" or "--out" not in args:
         return False
     out = args[args.index("--out") + 1]
-    return any(os.path.exists(os.path.join(out, f)) for f in ("bench.json", "stats.json"))
+    return any(results_sections.whole(os.path.join(out, f)) for f in ("bench.json", "stats.json"))
 
 
 def tallow(*args):

@@ -49,7 +49,7 @@ def run(work, quick):
         for res in resolutions:
             for evaluate in EVALUATIONS:
                 out = run_dir(work, field, res, evaluate)
-                if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and os.path.exists(os.path.join(out, "stats.json")):
+                if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and results_sections.whole(os.path.join(out, "stats.json")):
                     print("results: kept", out, flush=True)
                     continue
                 cmd = [binary, "capture", "--preset", field, "--size", "96x54" if quick else SIZE,

@@ -38,7 +38,7 @@ def times(t0, fps, frames):
 
 
 def call(cmd, out_file):
-    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and os.path.exists(out_file):
+    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and results_sections.whole(out_file):
         print("results: kept", out_file, flush=True)
         return
     print("results:", " ".join(cmd), flush=True)

@@ -1,11 +1,29 @@
 #!/usr/bin/env python3
 """Shared by the docs/RESULTS.md generators: put one generated section into RESULTS.md.
 
-splice(md, heading, lines) replaces the section that starts with `heading` (up to the next `## `)
+whole(path) says whether a run's output is complete (resume). splice(md, heading, lines) replaces the section that starts with `heading` (up to the next `## `)
 or, when there is none, inserts it before the GPU section (`## On a GPU`) or at the end; the file is
 written to MD.tmp and renamed, so it is whole or untouched. `append(md, lines)` adds at the end.
 """
+import json
 import os
+
+
+def whole(path):
+    """Whether a run's output may be kept on resume (TALLOW_RESULTS_RESUME=1): the file exists and,
+    for a tallow JSON that says how its run ended (bench.json, stats.json: "run": {"state": ...}), the
+    run completed. An interrupted bench or capture writes what it finished (docs/commands.md), which
+    a resume must not take for the whole run."""
+    if not os.path.exists(path):
+        return False
+    if not path.endswith(".json"):
+        return True
+    try:
+        with open(path) as f:
+            run = json.load(f).get("run")
+    except (OSError, ValueError, AttributeError):
+        return False
+    return run is None or run.get("state") == "complete"
 
 
 def splice(md, heading, lines):

@@ -16,6 +16,22 @@ for name in sorted(os.listdir(scripts)):
 
 sys.path.insert(0, scripts)
 import results_bench  # noqa: E402
+import results_sections  # noqa: E402
+
+# Resume keeps only whole runs: an interrupted bench or capture writes the rows or frames it
+# finished, with "run": {"state": "interrupted"}, and must run again.
+with tempfile.TemporaryDirectory() as tmp:
+    def written(name, content):
+        path = os.path.join(tmp, name)
+        with open(path, "w") as f:
+            f.write(content)
+        return path
+    assert not results_sections.whole(os.path.join(tmp, "absent.json"))
+    assert results_sections.whole(written("bench.json", json.dumps({"run": {"state": "complete"}, "rows": []})))
+    assert not results_sections.whole(written("cut.json", json.dumps({"run": {"state": "interrupted"}})))
+    assert not results_sections.whole(written("torn.json", '{"run": {"sta'))
+    assert results_sections.whole(written("ref.exr", "EXR"))
+    assert results_sections.whole(written("placement.json", json.dumps({"shapes": []})))
 
 with tempfile.TemporaryDirectory() as tmp:
     md = os.path.join(tmp, "RESULTS.md")
