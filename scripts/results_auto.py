@@ -13,7 +13,6 @@ references' logs.
 """
 import json
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -26,14 +25,6 @@ SCALES = (0.01, 0.1, 1.0)
 BUNNY_CAMERA = ((0.05, 0.13, 0.32), (0.0, 0.045, 0.0))
 REF_REL_ERROR = "0.04"
 FRAMES = 16  # sss.frames: the maps converge; the bench's last frame is the converged one
-
-
-def call(cmd, out_file):
-    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and results_sections.whole(out_file):
-        print("results: kept", out_file, flush=True)
-        return
-    print("results:", " ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
 
 
 def scene_args(scale):
@@ -51,9 +42,9 @@ def run(work, quick):
         d = os.path.join(work, "scale_%g" % scale)
         os.makedirs(d, exist_ok=True)
         ref = os.path.join(d, "ref.exr")
-        call([binary, "reference", *scene_args(scale), "--size", size,
+        results_sections.run_once([binary, "reference", *scene_args(scale), "--size", size,
               *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref)
-        call([binary, "bench", *scene_args(scale), "--size", size, "--reference", ref, "--methods", "radiosity-maps",
+        results_sections.run_once([binary, "bench", *scene_args(scale), "--size", size, "--reference", ref, "--methods", "radiosity-maps",
               "--set", "sss.frames=%d" % frames, "--frames", str(frames + 2),
               "--sweep", "sss.map_size=512,auto", "--sweep", "sss.light_map_size=512,auto",
               "--out", os.path.join(d, "bench")], os.path.join(d, "bench", "bench.json"))
@@ -143,16 +134,5 @@ def section(work):
     return lines
 
 
-def main(argv):
-    if len(argv) >= 3 and argv[1] == "run":
-        run(argv[2], "--quick" in argv[3:])
-    elif len(argv) == 4 and argv[1] == "report":
-        results_sections.append(argv[3], section(argv[2]))
-    elif len(argv) == 4 and argv[1] == "splice":
-        results_sections.splice(argv[3], HEADING, section(argv[2]))
-    else:
-        sys.exit(__doc__)
-
-
 if __name__ == "__main__":
-    main(sys.argv)
+    results_sections.main(sys.argv[1:], __doc__, run, section, HEADING)

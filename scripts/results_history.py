@@ -15,7 +15,6 @@ import datetime
 import json
 import os
 import statistics
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -37,14 +36,6 @@ def times(t0, fps, frames):
     return [t0 + i / fps for i in range(frames)]
 
 
-def call(cmd, out_file):
-    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and results_sections.whole(out_file):
-        print("results: kept", out_file, flush=True)
-        return
-    print("results:", " ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-
-
 def run_dir(work, preset, history, move, samples):
     name = "%s_history_%d_move_%g" % (preset, history, move)
     return os.path.join(work, name if samples == 8 else name + "_n%d" % samples)
@@ -58,15 +49,15 @@ def run(work, quick):
     for preset, t0, fps in ANIMATIONS:
         tk = times(t0, fps, frames)[-1]
         ref = os.path.join(work, "%s_ref.exr" % preset)
-        call([binary, "reference", "--preset", preset, "--size", size, "--time", repr(tk),
-              *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref)
+        results_sections.run_once([binary, "reference", "--preset", preset, "--size", size, "--time", repr(tk),
+              *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref, quiet=True)
         for history, move, samples in (VARIANTS[:2] if quick else VARIANTS):
             out = run_dir(work, preset, history, move, samples)
-            call([binary, "capture", "--preset", preset, "--size", size, "--time", repr(t0), "--fps", repr(fps),
+            results_sections.run_once([binary, "capture", "--preset", preset, "--size", size, "--time", repr(t0), "--fps", repr(fps),
                   "--frames", str(frames), "--reference", ref, "--set", "sss.history=%d" % history,
                   "--set", "sss.history_move=%g" % move, "--set", "sss.samples=%d" % samples,
                   "--set", "render.flame=false", "--out", out],
-                 os.path.join(out, "stats.json"))
+                 os.path.join(out, "stats.json"), quiet=True)
 
 
 def median(values):
@@ -192,16 +183,5 @@ def section(work):
     return lines
 
 
-def main(argv):
-    if len(argv) >= 2 and argv[0] == "run":
-        run(argv[1], "--quick" in argv[2:])
-    elif len(argv) == 3 and argv[0] == "report":
-        results_sections.append(argv[2], section(argv[1]))
-    elif len(argv) == 3 and argv[0] == "splice":
-        results_sections.splice(argv[2], HEADING, section(argv[1]))
-    else:
-        sys.exit(__doc__)
-
-
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    results_sections.main(sys.argv[1:], __doc__, run, section, HEADING)

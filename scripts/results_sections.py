@@ -7,6 +7,8 @@ written to MD.tmp and renamed, so it is whole or untouched. `append(md, lines)` 
 """
 import json
 import os
+import subprocess
+import sys
 
 
 def whole(path):
@@ -44,3 +46,25 @@ def splice(md, heading, lines):
 def append(md, lines):
     with open(md, "a") as f:
         f.write("\n".join(lines) + "\n")
+
+
+def run_once(cmd, out_file, quiet=False):
+    """Runs cmd unless TALLOW_RESULTS_RESUME=1 and its output out_file is whole already."""
+    if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and whole(out_file):
+        print("results: kept", out_file, flush=True)
+        return
+    print("results:", " ".join(cmd), flush=True)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL if quiet else None)
+
+
+def main(args, doc, run, section, heading):
+    """The generators' command line (args without the program): run DIR [--quick], report DIR MD,
+    splice DIR MD; anything else prints `doc` and exits."""
+    if len(args) >= 2 and args[0] == "run":
+        run(args[1], "--quick" in args[2:])
+    elif len(args) == 3 and args[0] == "report":
+        append(args[2], section(args[1]))
+    elif len(args) == 3 and args[0] == "splice":
+        splice(args[2], heading, section(args[1]))
+    else:
+        sys.exit(doc)
