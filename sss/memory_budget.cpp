@@ -151,21 +151,24 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
   int directional = 0, point = 0;
   for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? directional : point)++;
   const SssSettings& s = settings.sss;
+  // A size the renderer chose (> 0), else the setting, with "auto" not yet chosen as kAutoBudgetSize.
+  const auto sized = [](const char* key, int chosen, int setting) {
+    const int size = chosen > 0 ? chosen : setting == kAuto ? kAutoBudgetSize : setting;
+    const std::string text = chosen > 0 || setting == kAuto
+                                 ? "the chosen " + std::string(key) + " " + std::to_string(size) + "²"
+                                 : square(key, size);
+    return std::pair{size, text};
+  };
   if (RadiosityMaps::needsLightGBuffers(scene, settings)) {
-    const int size = lightMapSize > 0 ? lightMapSize : s.lightMapSize == kAuto ? kAutoBudgetSize : s.lightMapSize;
+    const auto [size, text] = sized("sss.light_map_size", lightMapSize, s.lightMapSize);
     add("light G-buffers",
-        std::to_string(directional) + " directional and " + std::to_string(point) + " point light(s) at " +
-            (lightMapSize > 0 || s.lightMapSize == kAuto ? "the chosen sss.light_map_size " + std::to_string(size) + "²"
-                                                         : square("sss.light_map_size", size)),
+        std::to_string(directional) + " directional and " + std::to_string(point) + " point light(s) at " + text,
         lightGBufferBytes(directional, point, size));
   }
   if (RadiosityMaps::applies(scene, settings)) {
     const int k = mapCount(scene, settings);
-    const int size = mapSize > 0 ? mapSize : s.mapSize == kAuto ? kAutoBudgetSize : s.mapSize;
-    add("radiosity maps",
-        "sss.maps=" + std::to_string(k) + " × " +
-            (mapSize > 0 || s.mapSize == kAuto ? "the chosen sss.map_size " + std::to_string(size) + "²"
-                                               : square("sss.map_size", size)),
+    const auto [size, text] = sized("sss.map_size", mapSize, s.mapSize);
+    add("radiosity maps", "sss.maps=" + std::to_string(k) + " × " + text,
         radiosityMapBytes(k, size, s.computeGather, s.history > 0));
   }
   if (VirtualPointLights::applies(scene, settings)) {
