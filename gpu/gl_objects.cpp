@@ -280,4 +280,29 @@ void TransformFeedback::bindBuffer(GLuint index, const Buffer& buffer) {
   glTransformFeedbackBufferBase(id(), index, buffer.id());
 }
 
+Fence Fence::insert() {
+  Fence f;
+  f.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  return f;
+}
+
+Fence& Fence::operator=(Fence&& o) noexcept {
+  if (this != &o) {
+    if (sync_) glDeleteSync(sync_);
+    sync_ = o.sync_;
+    o.sync_ = nullptr;
+  }
+  return *this;
+}
+
+Fence::~Fence() {
+  if (sync_) glDeleteSync(sync_);
+}
+
+bool Fence::signaled() const {
+  if (!sync_) return false;
+  const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+  return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+}
+
 }  // namespace tallow::gpu

@@ -165,4 +165,23 @@ class TransformFeedback {
   detail::GlName<detail::TransformFeedbackTraits> name_;
 };
 
+/// A fence after the commands issued so far (glFenceSync): the CPU asks, without waiting, whether
+/// the GPU has finished them, before reading back what they wrote (no stall).
+class Fence {
+ public:
+  Fence() = default;
+  static Fence insert();
+  Fence(Fence&& o) noexcept : sync_(o.sync_) { o.sync_ = nullptr; }
+  Fence& operator=(Fence&& o) noexcept;
+  Fence(const Fence&) = delete;
+  Fence& operator=(const Fence&) = delete;
+  ~Fence();
+  bool empty() const { return sync_ == nullptr; }
+  /// True once the GPU passed the fence; never waits (flushes, so that it will pass).
+  bool signaled() const;
+
+ private:
+  GLsync sync_ = nullptr;
+};
+
 }  // namespace tallow::gpu

@@ -16,6 +16,9 @@
 #include "peers/image_space/result.glsl"
 #include "peers/sslpv/lookup.glsl"
 
+// Depth test before shading: hidden fragments neither cost the shading nor count toward sss.maps=auto.
+layout(early_fragment_tests) in;
+
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 
@@ -60,11 +63,14 @@ void main() {
   bool backFacing = dot(n, toCamera) < 0.0;
   if (uTranslucent != 0) {
     float seenBy = 1.0;
+    int firstMap = -1, firstFacingMap = -1;
     vec3 b = uTranslucentMethod == 3 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
              : uTranslucentMethod == 2
                  ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
              : uTranslucentMethod == 4 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
-                                       : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy);
+                                       : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy, firstMap,
+                                                                            firstFacingMap);
+    if (uTranslucentMethod == 1) countMapCoverage(firstMap, firstFacingMap);  // sss.maps=auto
     vec3 v = normalize(toCamera);
     vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);

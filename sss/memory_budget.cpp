@@ -168,7 +168,10 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
   if (RadiosityMaps::applies(scene, settings)) {
     const int k = mapCount(scene, settings);
     const auto [size, text] = sized("sss.map_size", mapSize, s.mapSize);
-    add("radiosity maps", "sss.maps=" + std::to_string(k) + " × " + text,
+    const std::string maps = s.maps == kAuto && scene.mapDirections.empty()
+                                 ? "sss.maps=auto (at most " + std::to_string(k) + ")"
+                                 : "sss.maps=" + std::to_string(k);
+    add("radiosity maps", maps + " × " + text,
         radiosityMapBytes(k, size, s.computeGather, s.history > 0));
   }
   if (VirtualPointLights::applies(scene, settings)) {

@@ -108,6 +108,9 @@ struct FrameContext {
   int cameraFrame = 0;
   /// Renderer::invalidate() before this frame: every pass runs as if it never ran (no history kept).
   bool invalidated = false;
+  /// sss.maps=auto: Algorithm 1's callers count which map first sees each point into the buffer the
+  /// renderer bound (sss/maps/map_coverage_probe.h).
+  bool countMapCoverage = false;
   const Scene& scene() const { return state.scene; }
   const RenderSettings& settings() const { return state.settings; }
   /// The scene camera for the target's aspect ratio, fitted to the geometry's bounds.

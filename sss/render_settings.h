@@ -16,15 +16,15 @@ enum class SssMethod {
   Sslpv,          ///< subsurface light propagation volumes (Børlum et al. 2011, docs/sslpv.md)
 };
 
-/// An int setting's "auto" (sss.map_size, sss.light_map_size): the renderer chooses the value from
-/// the scene (sss/maps/map_resolution.h).
+/// An int setting's "auto" (sss.map_size, sss.light_map_size, sss.maps): the renderer chooses the
+/// value from the scene (sss/maps/map_resolution.h, sss/maps/map_count.h).
 constexpr int kAuto = 0;
 
 /// The scattered radiosity maps of Dal Corso et al. (sss.* parameters).
 struct SssSettings {
   SssMethod method = SssMethod::RadiosityMaps;       ///< method
   BssrdfModel model = BssrdfModel::Directional;      ///< sss.model
-  int maps = 16;              ///< sss.maps: K, the scattered radiosity maps (directions)
+  int maps = 16;              ///< sss.maps: K, the scattered radiosity maps (directions; kAuto: chosen)
   int samples = 8;            ///< sss.samples: N, samples per texel, map, frame and colour band
   int mapSize = 512;          ///< sss.map_size [texels] of each scattered radiosity map (kAuto: chosen)
   int lightMapSize = 512;     ///< sss.light_map_size [texels] of each light G-buffer (kAuto: chosen)

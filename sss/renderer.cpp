@@ -113,9 +113,42 @@ std::vector<std::pair<Pass*, Renderer::Due>> Renderer::schedule(const FrameState
   return out;
 }
 
-std::vector<PlannedPass> Renderer::planFrame(const Scene& sceneAsLoaded, const RenderSettings& settings,
+namespace {
+
+bool autoMaps(const Scene& scene, const RenderSettings& settings) {
+  return settings.sss.maps == kAuto && scene.mapDirections.empty() && RadiosityMaps::applies(scene, settings);
+}
+
+}  // namespace
+
+int Renderer::chosenMapCount(const Scene& scene, const RenderSettings& settings) const {
+  return autoMaps(scene, settings) ? mapCountChooser_.k() : mapCount(scene, settings);
+}
+
+RenderSettings Renderer::withChosenMaps(const Scene& scene, const RenderSettings& settings) const {
+  RenderSettings s = settings;
+  if (autoMaps(scene, settings)) s.sss.maps = mapCountChooser_.k();
+  return s;
+}
+
+void Renderer::takeMapCoverage(const Scene& scene, const RenderSettings& settings) {
+  std::optional<MapCoverageCounts> counts = coverageProbe_.poll();
+  if (!counts) return;
+  // The VPL pass runs only when the maps change: its last counts at this K stand for the frames after.
+  if (counts->vpls) {
+    vplCoverage_ = counts->vpls;
+    vplCoverageMaps_ = counts->maps;
+  } else if (vplCoverage_ && vplCoverageMaps_ == counts->maps && VirtualPointLights::applies(scene, settings)) {
+    counts->vpls = vplCoverage_;
+  }
+  mapCountChooser_.update(*counts);
+  lastMapCoverage_ = std::move(counts);
+}
+
+std::vector<PlannedPass> Renderer::planFrame(const Scene& sceneAsLoaded, const RenderSettings& userSettings,
                                              double timeS) const {
   const Scene scene = sceneAtTime(sceneAsLoaded, timeS);
+  const RenderSettings settings = withChosenMaps(scene, userSettings);
   const FrameState state{scene, settings, timeS, accumulation_};
   std::map<std::string, Stamp> resources = resources_;
   std::vector<PlannedPass> out;
@@ -124,10 +157,13 @@ std::vector<PlannedPass> Renderer::planFrame(const Scene& sceneAsLoaded, const R
   return out;
 }
 
-FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& settings, double timeS) {
+FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& userSettings, double timeS) {
   // Lights that follow a candle's flame move with t; everything else is the scene as loaded.
   const Scene scene = sceneAtTime(sceneAsLoaded, timeS);
-  checkLimits(scene, settings);
+  checkLimits(scene, userSettings);  // sss.maps=auto: as many maps as auto may choose
+  const bool countCoverage = autoMaps(scene, userSettings);
+  if (countCoverage) takeMapCoverage(scene, userSettings);
+  const RenderSettings settings = withChosenMaps(scene, userSettings);
   target_.ensure(settings.width, settings.height);
   geometry_.update(scene);
   FrameTimings t;
@@ -135,6 +171,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   const FrameState state{scene, settings, timeS, accumulation_};
   FrameContext context{state, shaders_, geometry_, modules_, target_, plan_.method(state), plan_.methods()};
   context.invalidated = forget_;
+  context.countMapCoverage = countCoverage && coverageProbe_.begin(settings.sss.maps);
   std::map<std::string, Stamp> before = resources_;
   for (const auto& [pass, d] : schedule(state, resources_)) {
     {
@@ -164,6 +201,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
     for (const std::string& w : io.writes) before[w] = resources_[w];
   }
   forget_ = false;
+  if (context.countMapCoverage) coverageProbe_.end();
   // No wait here: this frame's GPU times are read later (resolveTimings, latestTimings).
   pending_.push_back(t);
   if (pending_.size() > gpu::GpuTimer::kRing) pending_.erase(pending_.begin());

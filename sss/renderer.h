@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -18,6 +19,8 @@
 #include "gpu/shader_library.h"
 #include "sss/display_pass.h"
 #include "sss/frame_plan.h"
+#include "sss/maps/map_coverage_probe.h"
+#include "sss/maps/map_count.h"
 #include "sss/pass.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
@@ -109,6 +112,11 @@ class Renderer {
   const VirtualPointLights* virtualPointLights() const;
   /// SSLPV's grids, once a frame has used them (null before).
   const Sslpv* sslpv() const;
+  /// sss.maps=auto: the K the next frame uses (sss/maps/map_count.h), from the coverage read back so
+  /// far; the setting itself otherwise.
+  int chosenMapCount(const Scene& scene, const RenderSettings& settings) const;
+  /// The newest coverage counts read back for sss.maps=auto (none before the first arrives).
+  const std::optional<MapCoverageCounts>& lastMapCoverage() const { return lastMapCoverage_; }
   /// Forgets what the progressive methods have accumulated, keeping every allocation: the next
   /// frame reruns every pass that reads the input "accumulation" (the methods' first passes, so the
   /// passes after them too) and restarts the no-cache seeds. For `tallow bench`, which times the
@@ -136,6 +144,11 @@ class Renderer {
   /// The due passes of the frame in `state` in order, advancing `resources` as running them would.
   std::vector<std::pair<Pass*, Due>> schedule(const FrameState& state, std::map<std::string, Stamp>& resources) const;
 
+  /// `settings` with sss.maps=auto replaced by the chosen K (what the passes and their inputs see).
+  RenderSettings withChosenMaps(const Scene& scene, const RenderSettings& settings) const;
+  /// Takes the newest coverage counts the GPU has finished (no wait) into the K chooser.
+  void takeMapCoverage(const Scene& scene, const RenderSettings& settings);
+
   const gpu::ShaderLibrary& shaders_;
   SceneGeometry geometry_;
   ModuleStore modules_;
@@ -151,6 +164,11 @@ class Renderer {
   std::vector<FrameTimings> pending_;  ///< rendered frames whose GPU times are not read yet (≤ kRing)
   FrameTimings latest_;                ///< the newest with GPU times
   CameraTarget target_;
+  MapCountChooser mapCountChooser_;
+  MapCoverageProbe coverageProbe_;
+  std::optional<CoverageHistogram> vplCoverage_;  ///< the VPLs' counts, measured at vplCoverageMaps_
+  int vplCoverageMaps_ = 0;
+  std::optional<MapCoverageCounts> lastMapCoverage_;
 };
 
 }  // namespace tallow::sss

@@ -39,7 +39,7 @@ TEST_F(EditHistoryTest, UndoRestoresEveryValueExactlyAndRedoReappliesThem) {
 
   registry.set(config, "sss.maps", 8);
   EXPECT_TRUE(history.commit(config));
-  EXPECT_EQ(history.undoLabel(), "sss.maps 16 → 8");
+  EXPECT_EQ(history.undoLabel(), "sss.maps auto → 8");
   // A material picked and then edited: name and coefficients change together (two steps).
   registry.set(config, "material", "Ketchup");
   ASSERT_TRUE(history.commit(config));

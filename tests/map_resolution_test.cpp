@@ -85,8 +85,12 @@ TEST(MapResolution, EveryChoiceIsAPowerOfTwoMeetingBothBoundsOrAtTheCap) {
     ASSERT_GE(size, sss::kAutoMapMin);
     ASSERT_LE(size, sss::kAutoMapMax);
     const double need = std::max(std::min(2.0 * pixels, 512.0), diameter / diffusion);
-    if (size < sss::kAutoMapMax) ASSERT_GE(size, need) << "a texel no wider than half a pixel or 1/σ_tr";
-    if (size > sss::kAutoMapMin) ASSERT_LT(size / 2, need) << "and no finer than that";
+    if (size < sss::kAutoMapMax) {
+      ASSERT_GE(size, need) << "a texel no wider than half a pixel or 1/σ_tr";
+    }
+    if (size > sss::kAutoMapMin) {
+      ASSERT_LT(size / 2, need) << "and no finer than that";
+    }
   }
 }
 

@@ -163,8 +163,8 @@ TEST_F(RegistryTest, FieldEvaluateIsGpuByDefaultAndCpuOnRequest) {
             "field.evaluate: unknown value \"gpus\" (did you mean \"gpu\"?); choices: gpu, cpu");
 }
 
-TEST_F(RegistryTest, MapSizesAreAutoByDefaultAndTakeAnIntegerOrAuto) {
-  for (const char* key : {"sss.map_size", "sss.light_map_size"}) {
+TEST_F(RegistryTest, MapSizesAndCountAreAutoByDefaultAndTakeAnIntegerOrAuto) {
+  for (const char* key : {"sss.map_size", "sss.light_map_size", "sss.maps"}) {
     SCOPED_TRACE(key);
     EXPECT_EQ(registry.get(config, key), "auto");
     registry.setFromString(config, std::string(key) + "=256");
@@ -177,9 +177,11 @@ TEST_F(RegistryTest, MapSizesAreAutoByDefaultAndTakeAnIntegerOrAuto) {
     EXPECT_EQ(registry.get(config, key), "auto");
   }
   EXPECT_EQ(config.render.sss.mapSize, sss::kAuto);
+  EXPECT_EQ(config.render.sss.maps, sss::kAuto);
   EXPECT_EQ(setError("sss.map_size", "automatic"), "sss.map_size: expected an integer or \"auto\", got \"automatic\"");
   EXPECT_EQ(setError("sss.map_size", 8), "sss.map_size: 8 is out of range [16, 8192]");
-  EXPECT_EQ(setError("sss.maps", "auto"), "sss.maps: expected an integer, got \"auto\"");
+  EXPECT_EQ(setError("sss.samples", "auto"), "sss.samples: expected an integer, got \"auto\"");
+  EXPECT_EQ(setError("sss.maps", 300), "sss.maps: 300 is out of range [1, 256]");
   EXPECT_EQ(setStringError("sss.light_map_size=big"), "sss.light_map_size: \"big\" is neither an integer nor auto");
 }
 

@@ -83,7 +83,8 @@ TEST(ViewScript, MistakesAreLocated) {
   EXPECT_EQ(errorOf("frame 1 set sss.maps"), "s.txt:1:13: expected key=value after set");
   EXPECT_EQ(errorOf("frame 1 set sss.mpas=4"), "s.txt:1:13: unknown parameter \"sss.mpas\" (did you mean \"sss.maps\"?)");
   EXPECT_EQ(errorOf("frame 1 set sss.maps=0"), "s.txt:1:22: sss.maps: 0 is out of range [1, 256]");
-  EXPECT_EQ(errorOf("frame 1 set sss.maps= four"), "s.txt:1:23: sss.maps: \"four\" is not an integer");
+  EXPECT_EQ(errorOf("frame 1 set sss.maps= four"), "s.txt:1:23: sss.maps: \"four\" is neither an integer nor auto");
+  EXPECT_EQ(errorOf("frame 1 set sss.samples= four"), "s.txt:1:26: sss.samples: \"four\" is not an integer");
   EXPECT_EQ(errorOf("frame 1 set material=Marbel"),
             "s.txt:1:22: material: unknown value \"Marbel\" (did you mean \"Marble\"?); choices: Marble, White "
             "Grapefruit Juice");

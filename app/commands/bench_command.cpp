@@ -110,6 +110,7 @@ struct RowResult {
   std::size_t gpuBytes = 0, triangles = 0;
   std::optional<std::size_t> mapsBytes;
   std::optional<int> mapSize, lightMapSize;  ///< the radiosity maps' sizes in use (what "auto" chose)
+  std::optional<int> maps;                   ///< K in use (what sss.maps=auto chose)
   gpu::Image first, last;
   // --equal-time
   std::optional<gpu::ImageError> equalTimeError;
@@ -265,6 +266,7 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
   if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
     row.mapsBytes = maps->bytes();
     if (maps->mapSize() > 0) row.mapSize = maps->mapSize();  // 0: the method drew no maps (no-cache)
+    if (!maps->views().empty()) row.maps = static_cast<int>(maps->views().size());
     if (maps->lightMapSize() > 0) row.lightMapSize = maps->lightMapSize();
   }
   return row;
@@ -415,6 +417,7 @@ void writeTables(const std::filesystem::path& out, const BenchState& b) {
                    {"gpu_bytes", row.gpuBytes},
                    {"maps_bytes", row.mapsBytes ? json(*row.mapsBytes) : json(nullptr)},
                    {"map_size_used", row.mapSize ? json(*row.mapSize) : json(nullptr)},
+                   {"maps_used", row.maps ? json(*row.maps) : json(nullptr)},
                    {"light_map_size_used", row.lightMapSize ? json(*row.lightMapSize) : json(nullptr)},
                    {"triangles", row.triangles}};
     if (row.equalTimeError) {

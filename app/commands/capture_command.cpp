@@ -85,6 +85,7 @@ nlohmann::json finalSummary(const sss::Renderer& renderer, const Config& config)
                {"warnings", warnings},
                {"light_map_size", maps->lightMapSize()},
                {"map_size", maps->mapSize()},
+               {"maps", maps->views().size()},
                {"frames_accumulated", maps->frames()},
                {"translucent_pixels", coverage.translucentPixels},
                {"unseen_pixels", coverage.unseenPixels},

@@ -60,9 +60,11 @@ Param bind(Param p, Field field) {
 
 /// Binds an int parameter that also takes "auto" (RenderSettings' kAuto, 0, in the field): the
 /// renderer chooses the value from the scene (sss.map_size, sss.maps, sss.light_map_size).
+/// `offValue`: what the panel sets when its auto checkbox is cleared (the paper's value).
 template <typename Field>
-Param bindIntOrAuto(Param p, Field field) {
+Param bindIntOrAuto(Param p, double offValue, Field field) {
   p.acceptsAuto = true;
+  p.autoOffValue = offValue;
   p.getter = [field](const Config& c) { return field(c) == sss::kAuto ? json("auto") : json(field(c)); };
   p.setter = [field](Config& c, const json& v) { field(c) = v.is_string() ? sss::kAuto : v.get<int>(); };
   return p;
@@ -311,12 +313,15 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     p.setter = [](Config& c, const json& v) { c.render.sss.model = sss::parseBssrdfModel(v.get<std::string>()); };
     r.add(std::move(p));
   }
-  r.add(bind<int>(withDefault(declare("sss.maps", "int", "maps",
+  r.add(bindIntOrAuto(withDefault(declare("sss.maps", "int", "maps",
                                       "K: scattered radiosity maps, from Halton directions on the bounding sphere (the "
-                                      "paper uses 16 for simple shapes, 28 for the candle, 31 for the dragon). The GPU's "
-                                      "array-layer and memory limits are checked when the renderer starts.", 1, 256),
-                              16),
-                  [](auto& c) -> auto& { return c.render.sss.maps; }));
+                                      "paper uses 16 for simple shapes, 28 for the candle, 31 for the dragon); auto: "
+                                      "the fewest of them that see all but 0.1% of the translucent pixels and VPLs "
+                                      "that more maps would see, measured every frame (at most 32, 16 at first; "
+                                      "docs/radiosity-maps.md). The GPU's array-layer and memory limits are checked "
+                                      "when the renderer starts.", 1, 256),
+                              "auto"),
+                      16, [](auto& c) -> auto& { return c.render.sss.maps; }));
   r.add(bind<int>(withDefault(declare("sss.samples", "int", "samples",
                                       "N: samples per map texel, frame and colour band of the estimator (Eq. 9).", 1,
                                       4096),
@@ -329,14 +334,14 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                           "(docs/radiosity-maps.md).",
                                           16, 8192),
                                   "auto"),
-                      [](auto& c) -> auto& { return c.render.sss.mapSize; }));
+                      512, [](auto& c) -> auto& { return c.render.sss.mapSize; }));
   r.add(bindIntOrAuto(withDefault(declare("sss.light_map_size", "int", "texels",
                                           "Edge of each light's G-buffer (a cube face for point lights); auto: a "
                                           "texel of a quarter of the shortest 1/sigma_tr over the objects' bounding "
                                           "sphere, as a power of two in [512, 4096] (point lights: 1024).",
                                           16, 8192),
                                   "auto"),
-                      [](auto& c) -> auto& { return c.render.sss.lightMapSize; }));
+                      512, [](auto& c) -> auto& { return c.render.sss.lightMapSize; }));
   r.add(bind<float>(withDefault(declare("sss.bias", "float", "× radius",
                                         "ε_bias: depth offset of the radiosity maps' visibility test (Algorithm 1), in "
                                         "units of the translucent objects' bounding radius.", 0, 1),

@@ -26,6 +26,8 @@ class Registry {
     std::vector<std::string> choices;  ///< enum only
     /// int only: the string "auto" is a value too, and the renderer chooses (sss.map_size=auto).
     bool acceptsAuto = false;
+    /// With acceptsAuto: the number the view's panel sets when its auto checkbox is cleared.
+    double autoOffValue = 0.0;
     /// Absent for scene-bound parameters, whose value comes from the preset.
     std::optional<nlohmann::json> defaultValue;
 

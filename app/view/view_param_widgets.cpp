@@ -16,8 +16,6 @@ using json = nlohmann::json;
 // Widget choice (ParamWidget): linear sliders over spans a slider can resolve, logarithmic ones over
 // positive ranges spanning decades, drag boxes for the rest (coordinates, counts from 0).
 constexpr double kMaxLinearIntSpan = 1024;
-/// What an int that accepts "auto" becomes when its auto checkbox is cleared (the paper's map size).
-constexpr double kAutoOffValue = 512;
 constexpr double kMaxLinearFloatSpan = 200;
 constexpr double kMinLogRatio = 100;
 /// Long choice lists (the materials) get a text filter in their combo.
@@ -153,10 +151,10 @@ void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const 
     }
     tooltip(p);
   } else if (p.type == "int" && p.acceptsAuto && value.is_string()) {
-    // "auto": the renderer chooses; clearing the checkbox gives a number to edit (kAutoOffValue).
+    // "auto": the renderer chooses; clearing the checkbox gives a number to edit (Param::autoOffValue).
     bool automatic = true;
     if (ImGui::Checkbox((label + ": auto").c_str(), &automatic) && !automatic)
-      apply(p, static_cast<std::int64_t>(std::max(p.min, kAutoOffValue)), set);
+      apply(p, static_cast<std::int64_t>(std::clamp(p.autoOffValue, p.min, p.max)), set);
     tooltip(p);
   } else if (p.type == "int") {
     // Applied when the drag ends: each new integer may reallocate textures or restart the maps.

@@ -1,5 +1,6 @@
 #include "sss/maps/maps_method.h"
 
+#include "sss/maps/map_count.h"
 #include "sss/maps/radiosity_maps.h"
 #include "sss/maps/virtual_point_lights.h"
 
@@ -56,8 +57,10 @@ void LightGBufferPass::run(FrameContext& context, bool /*changed*/) {
 
 std::string RadiosityMapsPass::reason(const FrameState& state) const {
   const SssSettings& s = state.settings.sss;
-  return std::to_string(mapCount(state.scene, state.settings)) +
-         (state.scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") + " scattered radiosity maps of " +
+  const std::string k = state.scene.mapDirections.empty() && s.maps == kAuto
+                            ? "auto (from their coverage, at most " + std::to_string(kAutoMapsMax) + ")"
+                            : std::to_string(mapCount(state.scene, state.settings));
+  return k + (state.scene.mapDirections.empty() ? " (Halton)" : " (listed in the preset)") + " scattered radiosity maps of " +
          sizeText(s.mapSize) + "^2: depth pre-pass, then " + std::to_string(s.samples) +
          " samples per texel and colour band (" + std::string(bssrdfModelName(s.model)) +
          " dipole), accumulated until " + std::to_string(s.frames) + " frames";
@@ -112,7 +115,8 @@ PassIo VplPass::io(const FrameState&) const {
 
 void VplPass::run(FrameContext& context, bool /*changed*/) {
   auto& vpls = context.modules.obtain<VirtualPointLights>(context.shaders);
-  vpls.render(context.scene(), context.settings(), context.geometry, *context.modules.find<RadiosityMaps>(), frame_++);
+  vpls.render(context.scene(), context.settings(), context.geometry, *context.modules.find<RadiosityMaps>(), frame_++,
+              context.countMapCoverage);
 }
 
 // --- the methods ------------------------------------------------------------------------------------
@@ -148,8 +152,9 @@ void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& conte
   const GLuint mapsUnit = firstUnit, depthUnit = firstUnit + 1, vplShadowUnit = firstUnit + 2;
   const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
   if (active && maps && shading(context.state) == SurfaceShading::Algorithm1) {
-    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true);
+    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true, context.countMapCoverage ? 0 : -1);
   } else {
+    p.set("uCoverageSection", -1);
     p.set("uMaps", static_cast<int>(mapsUnit));
     p.set("uMapDepth", static_cast<int>(depthUnit));
     p.set("uMapCount", 0);

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sss/maps/map_count.h"
 #include "sss/maps/map_history.h"
 #include "sss/maps/map_resolution.h"
 #include "sss/maps/radiosity_estimator.h"
@@ -106,7 +107,9 @@ void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry
 }
 
 int mapCount(const Scene& scene, const RenderSettings& settings) {
-  return scene.mapDirections.empty() ? settings.sss.maps : static_cast<int>(scene.mapDirections.size());
+  if (!scene.mapDirections.empty()) return static_cast<int>(scene.mapDirections.size());
+  // Auto before the renderer chose (limits, memory budget): the most it may choose.
+  return settings.sss.maps == kAuto ? kAutoMapsMax : settings.sss.maps;
 }
 
 BoundingSphere translucentBounds(const Scene& scene, const SceneGeometry& geometry) {
@@ -404,7 +407,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
 }
 
 void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings& settings, GLuint mapsUnit,
-                                          GLuint depthUnit, bool pixelLookups) const {
+                                          GLuint depthUnit, bool pixelLookups, int coverageSection) const {
   constexpr GLuint kMapViewsBinding = 5;  // shaders/maps/algorithm1.glsl
   // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
   const float radius = sphere_.radius;
@@ -414,6 +417,7 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   p.set("uEpsBias", settings.sss.bias * radius);
   p.set("uEpsComb", settings.sss.comb * radius);
   p.set("uViewWeight", settings.sss.viewWeight);
+  p.set("uCoverageSection", coverageSection);
   p.set("uMaps", static_cast<int>(mapsUnit));
   p.set("uMapDepth", static_cast<int>(depthUnit));
   maps_.bind(mapsUnit);

@@ -45,7 +45,8 @@ struct MapView {
 std::vector<MapView> radiosityMapViews(int k, const glm::vec3& centre, float radius);
 /// The same for listed directions (unit, from the centre toward each camera).
 std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions, const glm::vec3& centre, float radius);
-/// K of a frame: the scene's listed map directions, else sss.maps.
+/// K of a frame: the scene's listed map directions, else sss.maps (auto, not yet replaced by the
+/// renderer's choice: kAutoMapsMax, the most it may choose).
 int mapCount(const Scene& scene, const RenderSettings& settings);
 
 /// Draws the translucent scene objects (slots[objectIndex] ≥ 0) with `program` — maps/layered.vert
@@ -140,8 +141,10 @@ class RadiosityMaps {
   /// for a program that includes it: the camera pass and the VPL pass. `pixelLookups`: the caller
   /// passes a pixel's footprint (the camera pass), which is then filtered over at most half the
   /// shortest 1/σ_tr (maxMapFootprint); the VPL pass passes a VPL's patch and averages over all of it.
+  /// `coverageSection`: where sss.maps=auto's counts go (maps/coverage_counts.glsl: 0 camera, 1 VPLs;
+  /// −1: the frame counts nothing, MapCoverageProbe bound no buffer).
   void setAlgorithm1Uniforms(gpu::Program& program, const RenderSettings& settings, GLuint mapsUnit,
-                             GLuint depthUnit, bool pixelLookups) const;
+                             GLuint depthUnit, bool pixelLookups, int coverageSection) const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
   const std::vector<int>& slots() const { return slots_; }
   /// The directional light G-buffers (tests): normals, and per directional light (scene order of

@@ -166,7 +166,7 @@ std::string VirtualPointLights::describe(const Scene& scene, const RenderSetting
 }
 
 void VirtualPointLights::render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-                                const RadiosityMaps& maps, int frame) {
+                                const RadiosityMaps& maps, int frame, bool countCoverage) {
   const VplSettings& v = settings.vpl;
   count_ = v.count;
   const geometry::Aabb box = translucentBox(scene, geometry);
@@ -228,7 +228,7 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   // Step 2: the VPLs.
   gpu::Program& p = compute_;
   p.use();
-  maps.setAlgorithm1Uniforms(p, settings, kMapsUnit, kMapDepthUnit, false);
+  maps.setAlgorithm1Uniforms(p, settings, kMapsUnit, kMapDepthUnit, false, countCoverage ? 1 : -1);
   std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (maps.slots()[i] >= 0) eta[static_cast<std::size_t>(maps.slots()[i])] = scene.objects[i].material.eta;

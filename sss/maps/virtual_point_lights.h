@@ -69,9 +69,10 @@ class VirtualPointLights {
   static std::string describe(const Scene& scene, const RenderSettings& settings);
 
   /// Steps 1 and 2 for this frame; `maps` must hold this frame's maps. `frame` seeds the
-  /// directions when vpl.stable is off.
+  /// directions when vpl.stable is off. `countCoverage`: the VPLs' coverage by the maps goes to
+  /// sss.maps=auto's counts (section 1; the frame's MapCoverageProbe buffer is bound).
   void render(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
-              const RadiosityMaps& maps, int frame);
+              const RadiosityMaps& maps, int frame, bool countCoverage = false);
   /// Binds the VPL buffer and sets uVplCount (0 when `lights` is null) and the VPL shadow uniforms
   /// on a program that includes maps/vpl_receiver.glsl; the cluster cube shadow maps (or a lit dummy)
   /// go on texture unit `shadowUnit`.

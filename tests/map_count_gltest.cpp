@@ -1,0 +1,92 @@
+// sss.maps=auto in the renderer (issue 17, point 4; sss/maps/map_count.h): K chosen from the
+// coverage counts that Algorithm 1 writes on the GPU and the renderer reads back behind a fence.
+// The check is a second measurement of the same thing: the bunny's translucent and unseen pixels
+// counted on the CPU from the camera's coverage target (Renderer::mapCoverage, which knows nothing
+// of the counts), at the chosen K and at every fixed K from 1 to 16, against the counts and the
+// hole tolerance. Which K the rules choose from given counts is tested in map_count_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sss/maps/map_count.h"
+#include "sss/maps/radiosity_maps.h"
+#include "support/render_support.h"
+
+namespace tallow {
+namespace {
+
+const std::vector<std::string> kSmallBunny{"render.width=160", "render.height=120", "sss.samples=1",
+                                           "sss.map_size=128", "sss.light_map_size=512",
+                                           "render.shadow_map_size=64", "sss.frames=64"};
+
+std::vector<std::string> with(std::vector<std::string> sets, const std::string& more) {
+  sets.push_back(more);
+  return sets;
+}
+
+int mapsUsed(const test::PresetSession& s) { return static_cast<int>(s.renderer().radiosityMaps()->views().size()); }
+
+TEST(MapCountRenderer, TheBunnySettlesOnMapsThatLeaveNoHoles) {
+  test::PresetSession session("bunny", with(kSmallBunny, "sss.maps=auto"));
+  ASSERT_EQ(session.settings().sss.maps, sss::kAuto) << "auto is what the preset asked";
+  std::vector<int> used;
+  for (int frame = 0; frame < 6; ++frame) {
+    session.render(0.0);
+    used.push_back(mapsUsed(session));
+  }
+  EXPECT_EQ(used.front(), sss::kAutoMapsFirst);
+  const int k = used.back();
+  EXPECT_EQ(used[used.size() - 2], k) << "settled";
+  EXPECT_EQ(used[used.size() - 3], k) << "settled";
+  // A change of K restarted the maps; once settled they accumulate.
+  const int settledFor = static_cast<int>(std::count(used.begin(), used.end(), k));
+  EXPECT_EQ(session.renderer().radiosityMaps()->frames(), settledFor);
+
+  // The GPU's counts of this K against the CPU's count of the coverage target, pixel by pixel: the
+  // counts are of shaded fragments (the depth test comes first, but a fragment drawn before a
+  // nearer one still counts), so at least as many, and only a few more.
+  const sss::MapCoverage atK = session.renderer().mapCoverage();
+  const std::optional<sss::MapCoverageCounts>& counts = session.renderer().lastMapCoverage();
+  ASSERT_TRUE(counts.has_value());
+  ASSERT_EQ(counts->maps, k);
+  EXPECT_FALSE(counts->vpls.has_value()) << "the bunny's preset has no VPLs";
+  const double counted = static_cast<double>(counts->camera.total(k));
+  EXPECT_GE(counted, static_cast<double>(atK.translucentPixels));
+  EXPECT_LE(counted, 1.2 * static_cast<double>(atK.translucentPixels)) << "measured: 12% more fragments than pixels";
+  EXPECT_EQ(counts->cameraFacing.total(k), counts->camera.total(k)) << "both histograms count every pixel";
+
+  // The same frames with K fixed at 1 … 16: the unseen pixels by CPU read-back.
+  std::vector<double> unseen(17, 0.0);
+  std::size_t pixels = 0;
+  for (int j = 1; j <= 16; ++j) {
+    session.settings().sss.maps = j;
+    session.render(0.0);
+    const sss::MapCoverage c = session.renderer().mapCoverage();
+    unseen[static_cast<std::size_t>(j)] = static_cast<double>(c.unseenPixels);
+    pixels = c.translucentPixels;
+  }
+  ASSERT_GT(pixels, 2000u);
+  // Holes: no more than the tolerance beyond what 16 maps leave (two pixels of slack for the
+  // fragments counted above); and no fewer maps than the fewest that achieve that (the facing rule
+  // may ask for more, never for fewer).
+  const double allowed = unseen[16] + sss::kAutoMapsHoleTolerance * static_cast<double>(pixels);
+  const double slack = 2.0;
+  EXPECT_LE(unseen[static_cast<std::size_t>(std::min(k, 16))], allowed + slack) << "K " << k;
+  int fewest = 16;
+  while (fewest > 1 && unseen[static_cast<std::size_t>(fewest) - 1] <= allowed - slack) --fewest;
+  EXPECT_GE(k, fewest);
+}
+
+TEST(MapCountRenderer, AFixedKIsNeverChanged) {
+  test::PresetSession session("bunny", with(kSmallBunny, "sss.maps=16"));
+  for (int frame = 0; frame < 3; ++frame) session.render(0.0);
+  EXPECT_EQ(mapsUsed(session), 16);
+  EXPECT_EQ(session.renderer().radiosityMaps()->frames(), 3);
+  EXPECT_EQ(session.renderer().chosenMapCount(session.scene(), session.settings()), 16);
+}
+
+}  // namespace
+}  // namespace tallow
