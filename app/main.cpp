@@ -123,10 +123,11 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--gl", bench.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
 
   tallow::app::CompareOptions compare;
-  auto* compareCmd = app.add_subcommand("compare", "two EXR renders side by side with their difference in false colour, as one PNG");
+  auto* compareCmd = app.add_subcommand("compare", "two EXR renders side by side with their difference in false colour, as one PNG, and/or their error as JSON");
   compareCmd->add_option("a", compare.a, "A.exr")->required();
   compareCmd->add_option("b", compare.b, "B.exr (the difference is relative to its RMS radiance)")->required();
-  compareCmd->add_option("--out", compare.out, "FIG.png")->required();
+  compareCmd->add_option("--out", compare.out, "FIG.png");
+  compareCmd->add_option("--json", compare.json, "ERR.json: A's error against B over the mask (relative RMSE, mean ratio overall and per half, fireflies of both)");
   compareCmd->add_option("--caption", compare.captions, "caption of A, then of B (default: the file names)");
   compareCmd->add_option("--title", compare.title, "title above the pictures");
   compareCmd->add_option("--mask", compare.mask, "EXR whose alpha >= 0.5 marks the pixels compared (e.g. REF_stderr.exr)");

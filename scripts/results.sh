@@ -10,8 +10,9 @@
 # surface, scripts/results_placement.py) and of `tallow capture` on the animated candle and blob with
 # the fields evaluated on the CPU and on the GPU (issue 16, point 7, scripts/results_fields.py) and
 # with the maps restarted or kept while they move (issue 17, point 3, scripts/results_history.py), and
-# the bunny at three scales with the map sizes fixed and chosen (issue 17, point 4,
-# scripts/results_auto.py). Every
+# the bunny at three scales with the map sizes and K fixed and chosen (issue 17, point 4,
+# scripts/results_auto.py), and the animated default candle before and after issue 17 (point 5,
+# scripts/results_animated.py, which builds the earlier commit once). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -59,6 +60,9 @@ TALLOW="$tallow" python3 "$root/scripts/results_history.py" run "$work/history" 
 # Issue 17, point 4: the map and light G-buffer sizes chosen from the scene (auto) against the fixed
 # 512, the marble bunny at 0.01, 0.1 and 1 m.
 TALLOW="$tallow" python3 "$root/scripts/results_auto.py" run "$work/auto" ${quick:+--quick}
+# Issue 17, point 5: the animated default candle against the references at each frame's time, with
+# the build from before issue 17 (built once into $work/animated/before) and this one.
+TALLOW="$tallow" python3 "$root/scripts/results_animated.py" run "$work/animated" ${quick:+--quick}
 
 python3 - "$work/extraction.json" "$root/docs/RESULTS.md.tmp" "$repeats" "$(nproc 2>/dev/null || echo '?')" "$work/maps.json" "$work/gather_fragment.json" "$work/gather_compute.json" <<'PY'
 import json, sys, datetime, platform
@@ -223,6 +227,7 @@ python3 "$root/scripts/results_placement.py" "$work/placement.json" "$root/docs/
 python3 "$root/scripts/results_fields.py" report "$work/fields" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_history.py" report "$work/history" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_auto.py" report "$work/auto" "$root/docs/RESULTS.md.tmp"
+python3 "$root/scripts/results_animated.py" report "$work/animated" "$root/docs/RESULTS.md.tmp"
 # Issue 18: a GPU run of the device bench, copied into docs/gpu/, or the statement that none exists.
 python3 "$root/scripts/results_bench.py" gpu "$root/docs/gpu" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"

@@ -42,7 +42,8 @@ TEST(MapCountRenderer, TheBunnySettlesOnMapsThatLeaveNoHoles) {
   EXPECT_EQ(used[used.size() - 2], k) << "settled";
   EXPECT_EQ(used[used.size() - 3], k) << "settled";
   // A change of K restarted the maps; once settled they accumulate.
-  const int settledFor = static_cast<int>(std::count(used.begin(), used.end(), k));
+  int settledFor = 0;
+  for (auto it = used.rbegin(); it != used.rend() && *it == k; ++it) ++settledFor;
   EXPECT_EQ(session.renderer().radiosityMaps()->frames(), settledFor);
 
   // The GPU's counts of this K against the CPU's count of the coverage target, pixel by pixel: the

@@ -7,9 +7,12 @@
 
 #include "app/commands/capture_command.h"
 #include "app/commands/comparison_figure.h"
+#include "app/commands/frame_stats.h"
 #include "app/commands/gnuplot.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
+#include "gpu/atomic_file.h"
+#include "gpu/image_error.h"
 #include "gpu/image_io.h"
 
 namespace tallow::app {
@@ -28,8 +31,10 @@ std::string sizeText(const gpu::Image& i) { return std::to_string(i.width) + "x"
 }  // namespace
 
 int runCompare(const CompareOptions& o) {
-  if (o.out.empty()) throw InputError("compare: --out FIG.png is required");
-  if (std::filesystem::path(o.out).extension() != ".png") throw InputError("--out: expected a .png file, got \"" + o.out + "\"");
+  if (o.out.empty() && o.json.empty()) throw InputError("compare: --out FIG.png or --json ERR.json is required");
+  if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
+    throw InputError("--out: expected a .png file, got \"" + o.out + "\"");
+  if (!o.json.empty()) checkOutputFile("--json", o.json, {".json"});
   if (o.captions.size() > 2) throw InputError("--caption: give at most two, for A and B");
   if (!(o.scale >= 0.0) || !std::isfinite(o.scale)) throw InputError("--scale: must be a positive fraction (0: automatic)");
   if (!std::isfinite(o.exposureEv) || std::abs(o.exposureEv) > 20.0) throw InputError("--exposure-ev: must be in [-20, 20]");
@@ -43,6 +48,18 @@ int runCompare(const CompareOptions& o) {
     if (mask->width != a.width || mask->height != a.height)
       throw InputError("--mask: " + o.mask + " is " + sizeText(*mask) + ", the images " + sizeText(a));
   }
+  if (!o.json.empty()) {
+    // Without a mask every pixel counts (alpha 1 everywhere).
+    gpu::Image all = a;
+    for (glm::vec4& p : all.pixels) p = glm::vec4(1.0f);
+    const gpu::Image& pixels = mask ? *mask : all;
+    if (gpu::objectPixels(pixels) == 0) throw InputError("--mask: " + o.mask + " marks no pixel (alpha >= 0.5)");
+    const nlohmann::json record{{"a", o.a}, {"b", o.b}, {"mask", o.mask.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.mask)},
+                                {"error", referenceErrorRecord(a, b, pixels)}};
+    gpu::writeTextFileAtomically(o.json, record.dump(2) + "\n");
+    std::printf("tallow: wrote %s\n", o.json.c_str());
+  }
+  if (o.out.empty()) return 0;
   const std::filesystem::path out(o.out);
   checkOutputFile("--out", out, {".png"});
   if (!gnuplotAvailable()) throw InputError("compare: gnuplot is not installed (apt-get install gnuplot-nox)");

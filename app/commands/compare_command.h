@@ -2,7 +2,9 @@
 // `tallow compare A.exr B.exr --out FIG.png`: two renders of one scene side by side, tone mapped,
 // each under its caption, and their difference in false colour with a scale bar
 // (app/commands/comparison_figure.h), e.g. a frame against its reference, or VPL shadows off and on
-// (docs/RESULTS.md). Needs gnuplot.
+// (docs/RESULTS.md). Needs gnuplot. `--json ERR.json` writes A's error against B over the mask as
+// capture's per-frame "reference_error" has it (app/commands/frame_stats.h), e.g. for frames that
+// another build rendered (scripts/results_animated.py).
 #include <string>
 #include <vector>
 
@@ -15,11 +17,13 @@ struct CompareOptions {
   std::string mask;         ///< EXR whose alpha ≥ 0.5 marks the compared pixels (a reference's _stderr.exr); empty: all
   double exposureEv = 0.0;  ///< before the ACES tone map
   double scale = 0.0;       ///< top of the colour scale as a fraction; 0: automatic
-  std::string out;          ///< FIG.png
+  std::string out;          ///< FIG.png (empty: no figure; then json is needed)
+  std::string json;         ///< ERR.json (empty: none)
 };
 
 /// Returns the exit code; throws InputError with one line on bad input (unreadable or mismatched
-/// images, gnuplot missing, a bad --scale), std::runtime_error when gnuplot fails.
+/// images, neither --out nor --json, gnuplot missing for --out, a bad --scale, a mask with no
+/// pixel), std::runtime_error when gnuplot fails.
 int runCompare(const CompareOptions& options);
 
 }  // namespace tallow::app

@@ -69,6 +69,8 @@ nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& r
           {"mean_ratio", e.meanRatio},
           {"upper_mean_ratio", halves ? nlohmann::json(halves->upper.meanRatio) : nlohmann::json(nullptr)},
           {"lower_mean_ratio", halves ? nlohmann::json(halves->lower.meanRatio) : nlohmann::json(nullptr)},
+          {"fireflies", gpu::fireflyCount(image, standardError)},
+          {"reference_fireflies", gpu::fireflyCount(reference, standardError)},
           {"pixels", e.pixels}};
 }
 

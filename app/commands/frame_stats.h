@@ -43,7 +43,8 @@ std::size_t residentBytes();
 
 /// stats.json's per-frame "reference_error" against a reference (gpu::imageError over the pixels the
 /// reference's standard-error image marks): {"rel_rmse", "mean_ratio", "upper_mean_ratio",
-/// "lower_mean_ratio" (the object's upper and lower rows; null when it spans one row), "pixels"}.
+/// "lower_mean_ratio" (the object's upper and lower rows; null when it spans one row), "fireflies"
+/// and "reference_fireflies" (gpu::fireflyCount of the image and of the reference), "pixels"}.
 nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError);
 
 

@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Issue 17, point 5: the animated candle (the default preset) before and after issue 17. The candle
+played from t0 at a fixed frame rate, every frame at a new time (the field and the flame's light
+move, the maps restart), each frame against `tallow reference` at its own time: relative RMSE, the
+bias of the wax's upper and lower half, fireflies (and the reference's own), wall time per frame;
+then the new build again with N raised until a frame costs what the old build's did, for the error
+at equal wall time. The docs/RESULTS.md section they become.
+
+"Before" is the build of BEFORE_COMMIT, the last commit before issue 17's first change (the
+paper's estimator per colour band, no second density for point lights, K = 16, 512² maps): the run
+step builds it in DIR/before (a git worktree and a build of the `tallow` target; minutes, and once:
+the build is kept) unless TALLOW_BEFORE names such a binary. Every frame of every row is measured
+the same way, by this build's `tallow compare --json` against the frame's reference.
+
+  results_animated.py run DIR [--quick]   references, builds and captures into DIR (TALLOW: this build's binary)
+  results_animated.py report DIR MD       appends the section to MD
+  results_animated.py splice DIR MD       replaces the section in MD (or adds it before the GPU section)
+
+Called by scripts/results.sh (run, report). Every number comes from the captures' stats.json and
+the compare JSON files.
+"""
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results_sections  # noqa: E402
+
+HEADING = "## The animated candle before and after (issue 17, point 5)"
+BEFORE_COMMIT = "8b53692"
+PRESET, T0, FPS, FRAMES = "candle", 12.0, 8.0, 8
+SIZE = "320x180"
+REF_REL_ERROR = "0.02"
+SAMPLES = 8  # sss.samples, the default, of the first after rows
+# Rows: (name, binary "before"/"after", extra settings). The equal-time row is added by run().
+ROWS = (("before", "before", []),
+        ("after, K = 16", "after", ["sss.maps=16"]),
+        ("after (defaults)", "after", []))
+
+
+def times(frames):
+    return [T0 + i / FPS for i in range(frames)]
+
+
+def root():
+    return os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def before_binary(work):
+    given = os.environ.get("TALLOW_BEFORE")
+    if given:
+        return given
+    src, build = os.path.join(work, "before", "src"), os.path.join(work, "before", "build")
+    binary = os.path.join(build, "tallow")
+    if os.path.exists(binary):
+        return binary
+    if not os.path.exists(src):
+        subprocess.run(["git", "-C", root(), "worktree", "add", "--detach", "-f", src, BEFORE_COMMIT], check=True)
+    env = dict(os.environ, TALLOW_BUILD_DIR=build, TALLOW_BUILD_TARGETS="tallow")
+    subprocess.run(["bash", os.path.join(src, "scripts", "build.sh")], check=True, env=env, stdout=subprocess.DEVNULL)
+    return binary
+
+
+def row_dir(work, name):
+    return os.path.join(work, "rows", name.replace(" ", "_").replace(",", "").replace("(", "").replace(")", "").replace("=", ""))
+
+
+def capture(binary, work, name, sets, size, frames):
+    """Captures a row; the before build, in its own worktree, is pointed at this checkout's data."""
+    out = row_dir(work, name)
+    args = [binary, "capture", "--preset", PRESET, "--size", size, "--time", repr(T0), "--fps", repr(FPS),
+            "--frames", str(frames), "--set", "render.flame=false", "--exr-float", "--out", out]
+    for s in sets:
+        args += ["--set", s]
+    os.environ.setdefault("TALLOW_DATA_DIR", os.path.join(os.path.dirname(root()), "shared", "data"))
+    results_sections.run_once(args, os.path.join(out, "stats.json"), quiet=True)
+    return out
+
+
+def compare_frames(binary, work, out, frames):
+    for i in range(frames):
+        ref = os.path.join(work, "ref_%d.exr" % i)
+        result = os.path.join(out, "error_%04d.json" % i)
+        results_sections.run_once([binary, "compare", os.path.join(out, "frame_%04d.exr" % i), ref,
+                                   "--mask", os.path.join(work, "ref_%d_stderr.exr" % i), "--json", result],
+                                  result, quiet=True)
+
+
+def wall_per_frame(out):
+    with open(os.path.join(out, "stats.json")) as f:
+        frames = json.load(f)["frames"]
+    # The first frame also compiles and allocates; the others are what playing costs.
+    return statistics.median(f["wall_ms"] for f in frames[1:])
+
+
+def run(work, quick):
+    os.makedirs(work, exist_ok=True)
+    binary = os.environ.get("TALLOW", "tallow")
+    frames = 3 if quick else FRAMES
+    size = "96x54" if quick else SIZE
+    for i, t in enumerate(times(frames)):
+        ref = os.path.join(work, "ref_%d.exr" % i)
+        results_sections.run_once([binary, "reference", "--preset", PRESET, "--size", size, "--time", repr(t),
+                                   *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref],
+                                  ref, quiet=True)
+    before = before_binary(work)
+    walls = {}
+    for name, which, sets in ROWS:
+        out = capture(before if which == "before" else binary, work, name, sets, size, frames)
+        compare_frames(binary, work, out, frames)
+        walls[name] = wall_per_frame(out)
+    # Equal wall time: N scaled by the before row's time per frame over the defaults', then the
+    # defaults with that N (the time per frame is about a fixed part plus one proportional to N).
+    n = max(1, round(SAMPLES * walls["before"] / walls["after (defaults)"]))
+    name = "after, N = %d (equal time)" % n
+    out = capture(binary, work, name, ["sss.samples=%d" % n], size, frames)
+    compare_frames(binary, work, out, frames)
+    with open(os.path.join(work, "equal_time.json"), "w") as f:
+        json.dump({"name": name, "samples": n}, f)
+
+
+def fmt(x, d=3):
+    return "—" if x is None else "%.*f" % (d, x)
+
+
+def pct(x):
+    return "—" if x is None else "%.1f%%" % (100.0 * x)
+
+
+def load_row(work, name):
+    out = row_dir(work, name)
+    with open(os.path.join(out, "stats.json")) as f:
+        stats = json.load(f)
+    errors = []
+    for i in range(len(stats["frames"])):
+        with open(os.path.join(out, "error_%04d.json" % i)) as f:
+            errors.append(json.load(f)["error"])
+    return stats, errors
+
+
+def section(work):
+    with open(os.path.join(work, "equal_time.json")) as f:
+        equal = json.load(f)
+    names = [r[0] for r in ROWS] + [equal["name"]]
+    rows = {name: load_row(work, name) for name in names}
+    lines = []
+    add = lines.append
+    add(HEADING)
+    add("")
+    stats0 = rows[names[1]][0]
+    add("The default preset, the candle, played from t₀ = %g s at %g frames per second for %d frames at %s, every"
+        % (T0, FPS, len(stats0["frames"]), "×".join(SIZE.split("x"))))
+    add("frame at a new time (the field and the flame's light move; the maps restart at every frame), the flame")
+    add("itself not drawn (the reference has none); each frame against `tallow reference` at its own time (ε %s)."
+        % pct(float(REF_REL_ERROR)))
+    add("Before: the build of `%s`, the last commit before issue 17 (the paper's estimator per colour band, no"
+        % BEFORE_COMMIT)
+    add("second density for point lights, K = 16, 512² maps). After: this build, with K = 16 and with its")
+    add("defaults (`sss.maps=auto`, sizes `auto`, `sss.point_share` 0.25), then with N raised until a frame costs")
+    add("what a frame before did (equal wall time). Every frame is measured by this build's `tallow compare --json`.")
+    add("Medians over the frames; the wall time leaves out the first frame (compiling, allocating). Device `%s`."
+        % stats0.get("gl", {}).get("GL_RENDERER", "?"))
+    add("Upper / lower: the mean over the upper or lower half of the wax's pixels against the reference's (the")
+    add("lower wall is lit only through the cup); fireflies: wax pixels with a channel above 4× its 5×5 median.")
+    add("")
+    add("| row | N | K | rel. RMSE | upper / lower | fireflies (reference) | wall per frame [ms] |")
+    add("|---|---:|---:|---:|---:|---:|---:|")
+    summary = {}
+    for name in names:
+        stats, errors = rows[name]
+        med = lambda key: statistics.median(e[key] for e in errors if e.get(key) is not None)
+        wall = statistics.median(f["wall_ms"] for f in stats["frames"][1:])
+        k = statistics.median((f.get("sss") or {}).get("maps", 16) for f in stats["frames"])
+        n = stats.get("parameters", {}).get("sss.samples", SAMPLES)
+        summary[name] = {"rel": med("rel_rmse"), "upper": med("upper_mean_ratio"), "lower": med("lower_mean_ratio"),
+                         "ff": med("fireflies"), "rff": med("reference_fireflies"), "wall": wall}
+        s = summary[name]
+        add("| %s | %s | %g | %s | %s / %s | %g (%g) | %.0f |" % (name, n, k, pct(s["rel"]), fmt(s["upper"]),
+                                                                 fmt(s["lower"]), s["ff"], s["rff"], s["wall"]))
+    add("")
+    before, after, eq = summary["before"], summary["after (defaults)"], summary[equal["name"]]
+    add("- Lower-wall bias within 5%% of the reference: before %s, after %s (%s)." % (
+        fmt(before["lower"]), fmt(after["lower"]), "met" if abs(after["lower"] - 1.0) <= 0.05 else "not met"))
+    add("- No more fireflies than the reference's own: after %g against %g (%s)." % (
+        after["ff"], after["rff"], "met" if after["ff"] <= after["rff"] else "not met"))
+    add("- At equal wall time (%.0f ms before, %.0f ms after with N = %d), relative RMSE %s before against %s after:"
+        " %.2f× lower (target 3×: %s)." % (before["wall"], eq["wall"], equal["samples"], pct(before["rel"]),
+                                           pct(eq["rel"]), before["rel"] / eq["rel"],
+                                           "met" if before["rel"] >= 3.0 * eq["rel"] else "not met"))
+    add("")
+    add("Rerun: `TALLOW=build/tallow python3 scripts/results_animated.py run DIR && python3 scripts/results_animated.py"
+        " splice DIR docs/RESULTS.md` (or the whole `bash scripts/results.sh`).")
+    add("")
+    return lines
+
+
+if __name__ == "__main__":
+    results_sections.main(sys.argv[1:], __doc__, run, section, HEADING)

@@ -1,0 +1,87 @@
+// `tallow compare A.exr B.exr --json ERR.json`: A's error against B over a mask, as capture's
+// per-frame "reference_error" has it, checked on images whose answers are worked out by hand.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
+
+#include "gpu/image_io.h"
+#include "support/run_tallow.h"
+#include "support/temp_dir.h"
+
+namespace tallow {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::runTallow;
+
+json readJsonFile(const fs::path& file) {
+  std::ifstream in(file);
+  return json::parse(in);
+}
+
+/// 16×12: the upper six rows at `upper`, the lower six at `lower` (grey, alpha 1).
+gpu::Image halves(float upper, float lower) {
+  gpu::Image image(16, 12);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) image.pixels[static_cast<std::size_t>(y * 16 + x)] = glm::vec4(glm::vec3(y < 6 ? upper : lower), 1.0f);
+  return image;
+}
+
+TEST(CompareJson, ErrorsOfKnownImages) {
+  test::TempDir dir;
+  const fs::path a = dir.path() / "a.exr", b = dir.path() / "b.exr", spot = dir.path() / "spot.exr";
+  gpu::writeExr(b, halves(1.0f, 2.0f), gpu::ExrPixelType::Float, {});
+  gpu::writeExr(a, halves(1.1f, 1.8f), gpu::ExrPixelType::Float, {});
+  auto r = runTallow({"compare", a.string(), b.string(), "--json", (dir.path() / "e.json").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const json e = readJsonFile(dir.path() / "e.json")["error"];
+  // Differences 0.1 and 0.2 on equal halves: RMSE √0.025, the reference's RMS √2.5: exactly 10%.
+  EXPECT_NEAR(e["rel_rmse"].get<double>(), 0.1, 1e-6);
+  EXPECT_NEAR(e["upper_mean_ratio"].get<double>(), 1.1, 1e-6);
+  EXPECT_NEAR(e["lower_mean_ratio"].get<double>(), 0.9, 1e-6);
+  EXPECT_NEAR(e["mean_ratio"].get<double>(), (1.1 + 1.8) / 3.0, 1e-6);
+  EXPECT_EQ(e["pixels"], 16 * 12) << "no mask: every pixel";
+  EXPECT_EQ(e["fireflies"], 0);
+
+  // One pixel at 20 among ones: a firefly (above 4× its 5×5 median) in A, none in B.
+  gpu::Image withSpot = halves(1.0f, 2.0f);
+  withSpot.pixels[2 * 16 + 3] = glm::vec4(20.0f, 20.0f, 20.0f, 1.0f);
+  gpu::writeExr(spot, withSpot, gpu::ExrPixelType::Float, {});
+  r = runTallow({"compare", spot.string(), b.string(), "--json", (dir.path() / "f.json").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const json f = readJsonFile(dir.path() / "f.json")["error"];
+  EXPECT_EQ(f["fireflies"], 1);
+  EXPECT_EQ(f["reference_fireflies"], 0);
+
+  // A mask marking only the lower half: only its pixels count.
+  gpu::Image lowerOnly = halves(0.0f, 0.0f);
+  for (int i = 6 * 16; i < 12 * 16; ++i) lowerOnly.pixels[static_cast<std::size_t>(i)].a = 1.0f;
+  for (int i = 0; i < 6 * 16; ++i) lowerOnly.pixels[static_cast<std::size_t>(i)].a = 0.0f;
+  gpu::writeExr(dir.path() / "mask.exr", lowerOnly, gpu::ExrPixelType::Float, {});
+  r = runTallow({"compare", a.string(), b.string(), "--mask", (dir.path() / "mask.exr").string(), "--json",
+                 (dir.path() / "g.json").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const json g = readJsonFile(dir.path() / "g.json")["error"];
+  EXPECT_EQ(g["pixels"], 16 * 6);
+  EXPECT_NEAR(g["mean_ratio"].get<double>(), 0.9, 1e-6);
+
+  // Bad input: one line, non-zero, nothing written.
+  r = runTallow({"compare", a.string(), b.string()});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(r.err, "tallow: compare: --out FIG.png or --json ERR.json is required\n");
+  gpu::Image none = halves(0.0f, 0.0f);
+  for (auto& p : none.pixels) p.a = 0.0f;
+  gpu::writeExr(dir.path() / "none.exr", none, gpu::ExrPixelType::Float, {});
+  r = runTallow({"compare", a.string(), b.string(), "--mask", (dir.path() / "none.exr").string(), "--json",
+                 (dir.path() / "h.json").string()});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("marks no pixel"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "h.json"));
+}
+
+}  // namespace
+}  // namespace tallow
