@@ -89,4 +89,33 @@ with tempfile.TemporaryDirectory() as tmp:
     assert "| candle | 128³ | gpu | 3 | 125.0 | 100.0 | 1.250 |" in text, text
     assert "cpu / gpu = 2.00; wall / GPU 2.500 → 1.250, within the bound of 1.3" in text, text
     assert "field.sample thread CPU 80.00 → 0.300 ms (bound 5 ms: under)" in text, text
+# Issue 17's animated-candle section: medians over the frames (wall: after the first), the K per
+# frame, and the three targets' verdicts from hand-made numbers.
+import results_animated  # noqa: E402
+
+with tempfile.TemporaryDirectory() as tmp:
+    def row(name, samples, maps, walls, rels, lowers, fireflies):
+        d = results_animated.row_dir(tmp, name)
+        os.makedirs(d)
+        frames = [{"time_s": 12 + i / 8, "wall_ms": w, "sss": {"maps": maps}} for i, w in enumerate(walls)]
+        with open(os.path.join(d, "stats.json"), "w") as f:
+            json.dump({"gl": {"GL_RENDERER": "llvmpipe (test)"}, "parameters": {"sss.samples": samples},
+                       "frames": frames}, f)
+        for i, (rel, lower, ff) in enumerate(zip(rels, lowers, fireflies)):
+            with open(os.path.join(d, "error_%04d.json" % i), "w") as f:
+                json.dump({"error": {"rel_rmse": rel, "upper_mean_ratio": 1.0, "lower_mean_ratio": lower,
+                                     "fireflies": ff, "reference_fireflies": 4, "pixels": 3000}}, f)
+    row("before", 8, 16, [9000, 6000, 5000, 7000], [0.30, 0.31, 0.29, 0.30], [0.80, 0.82, 0.81, 0.80], [20, 21, 19, 22])
+    row("after, K = 16", 8, 16, [5000, 4000, 4000, 4000], [0.10, 0.10, 0.10, 0.10], [0.97] * 4, [0] * 4)
+    row("after (defaults)", 8, 8, [5000, 2000, 2000, 2000], [0.12, 0.12, 0.12, 0.12], [0.97] * 4, [0, 0, 5, 0])
+    row("after, N = 24 (equal time)", 24, 8, [8000, 6000, 6000, 6000], [0.09, 0.11, 0.10, 0.10], [0.98] * 4, [0] * 4)
+    with open(os.path.join(tmp, "equal_time.json"), "w") as f:
+        json.dump({"name": "after, N = 24 (equal time)", "samples": 24}, f)
+    text = "\n".join(results_animated.section(tmp))
+    # before: rel 0.30, lower 0.805, fireflies 20.5, wall median of 6000, 5000, 7000 = 6000.
+    assert "| before | 8 | 16 | 30.0% | 1.000 / 0.805 | 20.5 (4) | 6000 |" in text, text
+    assert "| after (defaults) | 8 | 8 | 12.0% | 1.000 / 0.970 | 0 (4) | 2000 |" in text, text
+    assert "before 0.805, after 0.970 (met)" in text, text
+    assert "after 0 against 4 (met)" in text, text
+    assert "relative RMSE 30.0% before against 10.0% after: 3.00× lower (target 3×: met)" in text, text
 print("results scripts: ok")
