@@ -27,6 +27,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import results_sections  # noqa: E402
+from results_sections import fmt, pct  # noqa: E402
 
 HEADING = "## The animated candle before and after (issue 17, point 5)"
 BEFORE_COMMIT = "8b53692"
@@ -121,12 +122,6 @@ def run(work, quick):
         json.dump({"name": name, "samples": n}, f)
 
 
-def fmt(x, d=3):
-    return "—" if x is None else "%.*f" % (d, x)
-
-
-def pct(x):
-    return "—" if x is None else "%.1f%%" % (100.0 * x)
 
 
 def load_row(work, name):
@@ -190,8 +185,7 @@ def section(work):
         " %.2f× lower (target 3×: %s)." % (before["wall"], eq["wall"], equal["samples"], pct(before["rel"]),
                                            pct(eq["rel"]), ratio, "met" if ratio >= 3.0 - 1e-9 else "not met"))
     add("")
-    add("Rerun: `TALLOW=build/tallow python3 scripts/results_animated.py run DIR && python3 scripts/results_animated.py"
-        " splice DIR docs/RESULTS.md` (or the whole `bash scripts/results.sh`).")
+    add(results_sections.rerun("results_animated.py"))
     add("")
     return lines
 

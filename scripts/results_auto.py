@@ -18,6 +18,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import results_sections  # noqa: E402
+from results_sections import fmt, pct  # noqa: E402
 
 HEADING = "## Map sizes from the scene (issue 17, point 4)"
 SIZE = "160x120"
@@ -55,12 +56,6 @@ def run(work, quick):
               "--out", os.path.join(d, "bench_k")], os.path.join(d, "bench_k", "bench.json"))
 
 
-def pct(x):
-    return "—" if x is None else "%.1f%%" % (100 * x)
-
-
-def fmt(x, d=3):
-    return "—" if x is None else "%.*f" % (d, x)
 
 
 def load(work, bench="bench"):

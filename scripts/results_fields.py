@@ -178,8 +178,7 @@ def section(work):
                         "under" if gpu["sample_thread"] is not None and gpu["sample_thread"] < SAMPLE_CPU_BOUND_MS
                         else "**not under**"))))
     add("")
-    add("Rerun: `TALLOW=build/tallow python3 scripts/results_fields.py run DIR && python3 scripts/results_fields.py"
-        " splice DIR docs/RESULTS.md` (or the whole `bash scripts/results.sh`).")
+    add(results_sections.rerun("results_fields.py"))
     add("")
     return lines
 

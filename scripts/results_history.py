@@ -19,6 +19,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import results_sections  # noqa: E402
+from results_sections import fmt, pct  # noqa: E402
 
 HEADING = "## The maps while the geometry deforms (issue 17, point 3)"
 SIZE = "160x90"
@@ -65,12 +66,6 @@ def median(values):
     return statistics.median(values) if values else None
 
 
-def fmt(x, d=3):
-    return "—" if x is None else "%.*f" % (d, x)
-
-
-def pct(x):
-    return "—" if x is None else "%.1f%%" % (100.0 * x)
 
 
 def eps(text):
@@ -177,8 +172,7 @@ def section(work):
         add("Verdict: a kept history has the lower error at frame k in %d of %d cases; the default `sss.history`"
             " is %s." % (better, len(compared), "0 (restart)" if better * 2 < len(compared) else "worth raising"))
     add("")
-    add("Rerun: `TALLOW=build/tallow python3 scripts/results_history.py run DIR && python3 scripts/results_history.py"
-        " splice DIR docs/RESULTS.md` (or the whole `bash scripts/results.sh`).")
+    add(results_sections.rerun("results_history.py"))
     add("")
     return lines
 

@@ -28,6 +28,22 @@ def whole(path):
     return run is None or run.get("state") == "complete"
 
 
+def pct(x):
+    """A share as the tables print it: 0.0734 -> "7.3%" (None: a dash)."""
+    return "—" if x is None else "%.1f%%" % (100.0 * x)
+
+
+def fmt(x, d=3):
+    """A number with d decimals (None: a dash)."""
+    return "—" if x is None else "%.*f" % (d, x)
+
+
+def rerun(script):
+    """The closing line of a section written by scripts/<script> (run, then splice)."""
+    return ("Rerun: `TALLOW=build/tallow python3 scripts/%s run DIR && python3 scripts/%s splice DIR docs/RESULTS.md`"
+            " (or the whole `bash scripts/results.sh`)." % (script, script))
+
+
 def splice(md, heading, lines):
     with open(md) as f:
         text = f.read().split("\n")
