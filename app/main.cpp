@@ -105,6 +105,8 @@ int main(int argc, char** argv) {
   referenceCmd->add_option("--seed", reference.seed, "random seed");
   referenceCmd->add_option("--threads", reference.threads, "worker threads (0: all cores)");
   referenceCmd->add_flag(tallow::app::emergentFlag(), reference.emergent, "light leaving the translucent objects onto the receivers; =N: emitter points per object and pass (docs/reference.md)");
+  referenceCmd->add_flag("--cpu-mesher", reference.cpuMesher, "mesh field objects with OpenVDB volumeToMesh instead of taking the GPU's triangles (docs/reference.md)");
+  referenceCmd->add_option("--gl", reference.gl, "OpenGL context that contours field objects: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
 
   tallow::app::BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "speed against error: every method and swept setting timed and compared with the CPU reference");

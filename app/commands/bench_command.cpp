@@ -75,6 +75,9 @@ struct ReferenceGroup {
   std::size_t objectPixels = 0;
   std::size_t fireflies = 0;  ///< gpu::fireflyCount of the reference itself (its own noise)
   json info;  ///< passes, relative error, seconds, file
+  /// The GPU's triangles of the field objects, which the integrations here (the reference, the
+  /// equal-time runs) take; made before the bench's own context exists.
+  sss::FieldMeshes fieldMeshes;
   std::string file;  ///< name in DIR, when computed here
   bool complete = true;  ///< false: a stop request cut its integration short
   /// Its relative standard error ε (NaN when unknown): a row's error below it is the reference's noise.
@@ -180,7 +183,7 @@ void computeGroupReference(const BenchOptions& o, ReferenceGroup& g, const sss::
   r.seed = kReferenceSeed;
   r.out = g.file;  // validateReferenceOptions wants a name; nothing is written by computeReference
   if (o.receivers) r.emergent = sss::kDefaultEmitterPoints;
-  const sss::ReferenceResult result = computeReference(r, progress);
+  const sss::ReferenceResult result = computeReference(r, progress, &g.fieldMeshes);
   g.complete = !interrupted();
   g.radiance = result.radiance;
   g.standardError = result.standardError;
@@ -279,6 +282,7 @@ void runEqualTime(const LoadedScene& truth, const ReferenceGroup& ref, const Ben
   s.maxPasses = kEqualTimeMaxPasses;
   s.pointsPerPass = o.refPoints;
   s.seed = kReferenceSeed + kEqualTimeSeedOffset;
+  s.fieldMeshes = ref.fieldMeshes;
   const double budgetMs = row.firstWallMs;
   const auto start = Clock::now();
   const sss::ReferenceResult r = sss::renderReference(
@@ -660,6 +664,13 @@ int runBench(const BenchOptions& o) {
   // The references: read, or integrated on the CPU and written as soon as each is done.
   for (std::size_t gi = 0; gi < groups.size(); ++gi) {
     ReferenceGroup& g = groups[gi];
+    if (!givenReference || o.equalTime) {
+      ReferenceOptions meshing;
+      meshing.scene = g.scene;
+      meshing.timeS = o.timeS;
+      meshing.gl = o.gl;
+      g.fieldMeshes = referenceFieldMeshes(meshing, loadScene(g.scene));
+    }
     if (givenReference) {
       loadGivenReference(o, width, height, g);
     } else {

@@ -1,5 +1,6 @@
 #include "app/commands/mesh_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -30,6 +31,67 @@ void appendWorld(geometry::TriangleMesh& out, const geometry::TriangleMesh& part
 
 }  // namespace
 
+namespace {
+
+/// Each of `fields` at time t as the renderer draws it, in the field's units: contoured by the GPU
+/// (a current context and `shaders`), or with `cpu` by OpenVDB's volumeToMesh on the same lattice.
+sss::FieldMeshes meshEachField(const std::vector<PlacedField>& fields, const sss::RenderSettings& render,
+                               double timeS, const gpu::ShaderLibrary* shaders) {
+  sss::FieldMeshes meshes;
+  std::unique_ptr<sss::GpuFieldPrograms> onGpu;
+  if (shaders) onGpu = std::make_unique<sss::GpuFieldPrograms>(*shaders);
+  for (const PlacedField& f : fields) {
+    geometry::TriangleMesh part;
+    if (!shaders) {
+      part = geometry::meshOnCpu(f.source.sample(timeS, render.fieldRes), *f.source.at(timeS));
+    } else {
+      // As the renderer: blob and candle evaluated on the GPU with analytic normals, a melting mesh
+      // from its NanoVDB grids and the melt at t, still meshes uploaded; with field.evaluate=cpu
+      // every lattice sampled on the CPU and uploaded.
+      const auto dc = sss::makeFieldExtractor(*shaders, f.source, render.fieldRes, render.fieldPlacement,
+                                              render.fieldOnGpu);
+      if (render.fieldOnGpu) {
+        std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
+        if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
+          meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
+        sss::putFieldLattice(f.source, timeS, *dc, *onGpu, meltOnGpu.get());
+      } else {
+        dc->upload(f.source.sample(timeS, render.fieldRes));
+      }
+      dc->extract();
+      part = dc->readBack();
+    }
+    if (part.normals.size() != part.positions.size()) geometry::computeVertexNormals(part);
+    meshes.emplace(f.objectIndex, std::move(part));
+  }
+  return meshes;
+}
+
+/// A hidden context of `backend` and the shaders of `shaderDir`, current until destroyed.
+struct MeshingContext {
+  MeshingContext(const std::string& backend, const std::string& shaderDir) {
+    gpu::ContextOptions contextOptions;
+    contextOptions.backend = gpu::parseGlBackend(backend);
+    contextOptions.visible = false;
+    context = gpu::GlContext::create(contextOptions);
+    shaders = std::make_unique<gpu::ShaderLibrary>(makeShaderLibrary(shaderDir));
+  }
+  std::unique_ptr<gpu::GlContext> context;
+  std::unique_ptr<gpu::ShaderLibrary> shaders;
+};
+
+}  // namespace
+
+sss::FieldMeshes drawnFieldMeshes(const LoadedScene& loaded, const std::string& shaderDir, double timeS,
+                                  const std::string& gl) {
+  const sss::Scene& scene = loaded.config.scene;
+  const bool anyField = std::any_of(scene.objects.begin(), scene.objects.end(),
+                                    [](const sss::SceneObject& o) { return o.shape == sss::ShapeKind::Field; });
+  if (!anyField) return {};
+  const MeshingContext meshing(gl, shaderDir);
+  return meshEachField(placeFields(scene, loaded.presetName), loaded.config.render, timeS, meshing.shaders.get());
+}
+
 geometry::TriangleMesh meshFields(const MeshOptions& options) {
   checkTime("--time", options.timeS);
   LoadedScene loaded = loadScene(options.scene);
@@ -40,46 +102,13 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
       throw InputError(std::string("--res: ") + e.what());
     }
   }
-  const int res = loaded.config.render.fieldRes;
   const std::vector<PlacedField> fields = placeFields(loaded.config.scene, loaded.presetName);
-
-  std::unique_ptr<gpu::GlContext> context;
-  std::unique_ptr<gpu::ShaderLibrary> shaders;
-  if (!options.cpu) {
-    gpu::ContextOptions contextOptions;
-    contextOptions.backend = gpu::parseGlBackend(options.gl);
-    contextOptions.visible = false;
-    context = gpu::GlContext::create(contextOptions);
-    shaders = std::make_unique<gpu::ShaderLibrary>(makeShaderLibrary(options.scene.shaderDir));
-  }
+  std::unique_ptr<MeshingContext> meshing;
+  if (!options.cpu) meshing = std::make_unique<MeshingContext>(options.gl, options.scene.shaderDir);
+  const sss::FieldMeshes parts =
+      meshEachField(fields, loaded.config.render, options.timeS, meshing ? meshing->shaders.get() : nullptr);
   geometry::TriangleMesh world;
-  std::unique_ptr<sss::GpuFieldPrograms> onGpu;
-  if (shaders) onGpu = std::make_unique<sss::GpuFieldPrograms>(*shaders);
-  for (const PlacedField& f : fields) {
-    geometry::TriangleMesh part;
-    if (options.cpu) {
-      part = geometry::meshOnCpu(f.source.sample(options.timeS, res), *f.source.at(options.timeS));
-    } else {
-      // As the renderer: blob and candle evaluated on the GPU with analytic normals, a melting mesh
-      // from its NanoVDB grids and the melt at t, still meshes uploaded; with field.evaluate=cpu
-      // every lattice sampled on the CPU and uploaded.
-      const bool fieldOnGpu = loaded.config.render.fieldOnGpu;
-      const auto dc =
-          sss::makeFieldExtractor(*shaders, f.source, res, loaded.config.render.fieldPlacement, fieldOnGpu);
-      if (fieldOnGpu) {
-        std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
-        if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
-          meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
-        sss::putFieldLattice(f.source, options.timeS, *dc, *onGpu, meltOnGpu.get());
-      } else {
-        dc->upload(f.source.sample(options.timeS, res));
-      }
-      dc->extract();
-      part = dc->readBack();
-    }
-    if (part.normals.size() != part.positions.size()) geometry::computeVertexNormals(part);
-    appendWorld(world, part, f.model);
-  }
+  for (const PlacedField& f : fields) appendWorld(world, parts.at(f.objectIndex), f.model);
   if (world.triangles.empty())  // e.g. a --set that moved everything out of the lattice
     throw InputError("the field objects of preset " + quote(loaded.presetName) + " have no surface at t = " +
                      std::to_string(options.timeS) + " s");

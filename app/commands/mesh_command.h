@@ -7,6 +7,7 @@
 
 #include "app/config/setup.h"
 #include "geometry/triangle_mesh.h"
+#include "sss/reference/reference_integrator.h"
 
 namespace tallow::app {
 
@@ -18,6 +19,15 @@ struct MeshOptions {
   std::string gl = "osmesa";  ///< OpenGL context for the GPU path
   std::string out;            ///< MESH.ply
 };
+
+/// The triangles the renderer draws for each field object of `loaded` at time t, by object index, in
+/// the field's units (sampled as the renderer samples it, contoured by the GPU's dual contouring
+/// with field.res, field.placement and field.evaluate), in a hidden context of its own (backend
+/// `gl`, shaders from `shaderDir`; the caller's context, if any, is not current afterwards). Empty,
+/// and no context opened, when the scene has no field object. Throws ContextError /
+/// std::runtime_error with one line.
+sss::FieldMeshes drawnFieldMeshes(const LoadedScene& loaded, const std::string& shaderDir, double timeS,
+                                  const std::string& gl);
 
 /// The world-space mesh of every field object of the options' preset (no file written); opens a
 /// GL context unless options.cpu. Throws like runMesh.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "app/commands/interrupt.h"
+#include "app/commands/mesh_command.h"
 #include "app/commands/progress.h"
 #include "app/commands/provenance.h"
 #include "app/commands/option_checks.h"
@@ -24,8 +25,9 @@ std::string number(double v) {
   return text;
 }
 
-sss::ReferenceSettings referenceSettings(const ReferenceOptions& options) {
+sss::ReferenceSettings referenceSettings(const ReferenceOptions& options, sss::FieldMeshes fieldMeshes) {
   sss::ReferenceSettings s;
+  s.fieldMeshes = std::move(fieldMeshes);
   s.timeS = options.timeS;
   s.maxPasses = options.spp > 0 ? options.spp : 0;
   s.relError = options.relError.value_or(0.0);
@@ -129,11 +131,19 @@ std::string emergentFlag() {
   return flag;
 }
 
-sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss::ReferenceProgress& progress) {
+sss::FieldMeshes referenceFieldMeshes(const ReferenceOptions& options, const LoadedScene& loaded) {
+  if (options.cpuMesher) return {};
+  return drawnFieldMeshes(loaded, options.scene.shaderDir, options.timeS, options.gl);
+}
+
+sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss::ReferenceProgress& progress,
+                                      const sss::FieldMeshes* fieldMeshes) {
   validateReferenceOptions(options);
   const LoadedScene loaded = loadScene(options.scene);
+  const sss::ReferenceSettings settings =
+      referenceSettings(options, fieldMeshes ? *fieldMeshes : referenceFieldMeshes(options, loaded));
   try {
-    return sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options), progress);
+    return sss::renderReference(loaded.config.scene, loaded.config.render, settings, progress);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -145,6 +155,9 @@ int runReference(const ReferenceOptions& options) {
   // Written as OpenEXR whatever the name says, so the name must say it (REF_stderr.exr beside it too).
   checkOutputFile("--out", out, {".exr"});
   const LoadedScene loaded = loadScene(options.scene);
+  const sss::ReferenceSettings settings = referenceSettings(options, referenceFieldMeshes(options, loaded));
+  const bool anyField = std::any_of(loaded.config.scene.objects.begin(), loaded.config.scene.objects.end(),
+                                    [](const sss::SceneObject& o) { return o.shape == sss::ShapeKind::Field; });
   sss::ReferenceResult r;
   // SIGINT/SIGTERM end the integration after the pass in hand; the passes done are written as a
   // valid reference, its pass count and error in the metadata.
@@ -153,7 +166,7 @@ int runReference(const ReferenceOptions& options) {
     Progress progress("reference", "pass", 0);
     ReferenceTracker tracker(options, progress);
     try {
-      r = sss::renderReference(loaded.config.scene, loaded.config.render, referenceSettings(options), std::ref(tracker));
+      r = sss::renderReference(loaded.config.scene, loaded.config.render, settings, std::ref(tracker));
     } catch (const std::invalid_argument& e) {
       throw InputError(e.what());
     }
@@ -171,6 +184,7 @@ int runReference(const ReferenceOptions& options) {
       {"tallow.time_s", number(options.timeS)},
       {"tallow.model", std::string(sss::bssrdfModelName(loaded.config.render.sss.model))},
       {"tallow.triangles", std::to_string(r.triangles)},
+      {"tallow.field_mesher", !anyField ? "none" : options.cpuMesher ? "OpenVDB volumeToMesh" : "GPU dual contouring"},
       {"tallow.seconds", number(r.seconds)},
       {"tallow.emergent", r.emitterPoints > 0 ? "on" : "off"},
       {"tallow.version", tallowVersion()},

@@ -33,6 +33,10 @@ struct ReferenceOptions {
   /// --emergent[=N]: emitter points per translucent object and pass of the emergent light onto the
   /// receivers (sss::kDefaultEmitterPoints when given without a value); 0: off.
   int emergent = 0;
+  /// --cpu-mesher: mesh field objects with OpenVDB's volumeToMesh instead of taking the triangles
+  /// the GPU draws (drawnFieldMeshes), as before; their silhouettes and creases differ by a pixel.
+  bool cpuMesher = false;
+  std::string gl = "osmesa";  ///< --gl: the context that contours the field objects
   std::string out;          ///< REF.exr
 };
 
@@ -78,14 +82,20 @@ class ReferenceTracker {
 
  private:
   /// sss::ReferenceSettings::minPasses: passes the --rel-error stop always waits for.
-  static constexpr int kMinPasses = sss::ReferenceSettings{}.minPasses;
+  static constexpr int kMinPasses = sss::kDefaultMinPasses;
   int spp_;
   double target_;
   Progress& progress_;
 };
 
-/// Loads the scene as `capture` does and integrates it; nothing written.
-sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss::ReferenceProgress& progress = {});
+/// The field meshes the reference of `loaded` integrates over: the GPU's (drawnFieldMeshes in a
+/// hidden context of options.gl) unless options.cpuMesher (then none: the integrator meshes them).
+sss::FieldMeshes referenceFieldMeshes(const ReferenceOptions& options, const LoadedScene& loaded);
+
+/// Loads the scene as `capture` does and integrates it; nothing written. Field objects take the
+/// triangles of `fieldMeshes` when given, else those of referenceFieldMeshes.
+sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss::ReferenceProgress& progress = {},
+                                      const sss::FieldMeshes* fieldMeshes = nullptr);
 
 /// Returns the exit code; throws InputError / std::runtime_error with one line.
 int runReference(const ReferenceOptions& options);

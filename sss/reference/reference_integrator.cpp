@@ -66,17 +66,22 @@ WorldMesh placeMesh(int objectIndex, geometry::TriangleMesh mesh, const glm::mat
 }
 
 /// The scene's shapes as drawn at time t: meshes and primitives by SceneGeometry::shapeMesh, field
-/// objects meshed on the CPU (geometry::meshOnCpu) from the lattice the GPU contours (a blob's and a
-/// candle's the GPU fills itself from the same lines, shaders/fields/blob.glsl and candle.glsl:
-/// equal up to float rounding).
-std::vector<WorldMesh> worldMeshes(const Scene& scene, int fieldRes, double timeS) {
+/// objects as `drawn` holds them (the GPU's triangles) or else meshed on the CPU (geometry::meshOnCpu)
+/// from the lattice the GPU contours (a blob's and a candle's the GPU fills itself from the same
+/// lines, shaders/fields/blob.glsl and candle.glsl: equal up to float rounding).
+std::vector<WorldMesh> worldMeshes(const Scene& scene, int fieldRes, double timeS, const FieldMeshes& drawn) {
   std::vector<WorldMesh> out;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     if (o.shape == ShapeKind::Field) {
       const FieldSource source(o);
-      const geometry::SampledLattice lattice = source.sample(timeS, fieldRes);
-      geometry::TriangleMesh mesh = geometry::meshOnCpu(lattice, *source.at(timeS));
+      geometry::TriangleMesh mesh;
+      if (const auto given = drawn.find(static_cast<int>(i)); given != drawn.end()) {
+        mesh = given->second;
+      } else {
+        const geometry::SampledLattice lattice = source.sample(timeS, fieldRes);
+        mesh = geometry::meshOnCpu(lattice, *source.at(timeS));
+      }
       out.push_back(placeMesh(static_cast<int>(i), std::move(mesh), SceneGeometry::modelMatrix(o, source.bounds())));
     } else {
       geometry::TriangleMesh mesh = SceneGeometry::shapeMesh(o);
@@ -407,7 +412,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
                                                         static_cast<std::size_t>(settings.threads));
 
   const Scene scene = sceneAtTime(sceneAsLoaded, settings.timeS);
-  const std::vector<WorldMesh> meshes = worldMeshes(scene, render.fieldRes, settings.timeS);
+  const std::vector<WorldMesh> meshes = worldMeshes(scene, render.fieldRes, settings.timeS, settings.fieldMeshes);
   const RayScene rays(meshes);
   geometry::Aabb bounds;
   for (const WorldMesh& m : meshes)

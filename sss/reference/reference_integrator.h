@@ -10,7 +10,10 @@
 // VPLs of the radiosity-maps paper's §3.4). Formulas and limitations: docs/reference.md.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
+
+#include "geometry/triangle_mesh.h"
 
 #include "gpu/image.h"
 #include "sss/render_settings.h"
@@ -22,6 +25,12 @@ namespace tallow::sss {
 /// points shadow rays, so the count is bounded rather than scaled with the area.
 inline constexpr int kDefaultEmitterPoints = 1024;
 
+/// The default of ReferenceSettings::minPasses.
+inline constexpr int kDefaultMinPasses = 8;
+
+/// Field objects' triangles by object index, in the field's own units (before its transform).
+using FieldMeshes = std::map<int, geometry::TriangleMesh>;
+
 struct ReferenceSettings {
   double timeS = 0.0;           ///< animation time: field objects meshed and flame lights placed at t
   int maxPasses = 0;            ///< stop after this many passes (0: no pass limit)
@@ -31,12 +40,18 @@ struct ReferenceSettings {
   int pointsPerPass = 0;
   std::uint64_t seed = 1;       ///< the random stream; results do not depend on the thread count
   int threads = 0;              ///< 0: TBB's default
-  int minPasses = 8;            ///< with relError: passes before the error estimate is trusted (≥ 2)
+  int minPasses = kDefaultMinPasses;  ///< with relError: passes before the error estimate is trusted (≥ 2)
   int passLimit = 1 << 16;      ///< with relError only: give up after this many passes
   /// Light leaving the translucent objects onto the opaque receivers (one bounce, Lambertian
   /// receivers). Only when the GPU renders it too (VPLs), so that like is compared with like.
   bool emergentLight = false;
   int emitterPoints = kDefaultEmitterPoints;  ///< with emergentLight: emitter points per translucent object and pass (≥ 1)
+  /// The triangles the renderer draws for field objects at timeS (GpuDualContouring::readBack;
+  /// app::drawnFieldMeshes), so that the reference integrates over the surface the image shows. A
+  /// field object not in it is meshed on the CPU (geometry::meshOnCpu, OpenVDB volumeToMesh on the
+  /// same lattice), whose vertices differ from the GPU's by up to a lattice cell: at a sharp rim
+  /// that moves silhouettes and creases by a pixel (docs/reference.md).
+  FieldMeshes fieldMeshes;
 };
 
 /// The statistic the stopping rule and the metadata use, over the pixels whose camera ray hits a
