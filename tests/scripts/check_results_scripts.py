@@ -110,12 +110,24 @@ with tempfile.TemporaryDirectory() as tmp:
     row("after (defaults)", 8, 8, [5000, 2000, 2000, 2000], [0.12, 0.12, 0.12, 0.12], [0.97] * 4, [0, 0, 5, 0])
     row("after, N = 24 (equal time)", 24, 8, [8000, 6000, 6000, 6000], [0.09, 0.11, 0.10, 0.10], [0.98] * 4, [0] * 4)
     with open(os.path.join(tmp, "equal_time.json"), "w") as f:
-        json.dump({"name": "after, N = 24 (equal time)", "samples": 24}, f)
+        json.dump({"name": "after, N = 24 (equal time)", "samples": 24, "first_guess": 20}, f)
     text = "\n".join(results_animated.section(tmp))
+    assert "a first guess N = 20 scaled by the time ratio" in text, text
     # before: rel 0.30, lower 0.805, fireflies 20.5, wall median of 6000, 5000, 7000 = 6000.
     assert "| before | 8 | 16 | 30.0% | 1.000 / 0.805 | 20.5 (4) | 6000 |" in text, text
     assert "| after (defaults) | 8 | 8 | 12.0% | 1.000 / 0.970 | 0 (4) | 2000 |" in text, text
     assert "before 0.805, after 0.970 (met)" in text, text
     assert "after 0 against 4 (met)" in text, text
     assert "relative RMSE 30.0% before against 10.0% after: 3.00× lower (target 3×: met)" in text, text
+# The equal-time N: guess round(8 × 6000 / 2000) = 24; its frames at 5200 ms give 200 ms per sample
+# over the defaults' 2000 ms at N = 8, so 6000 ms is reached at N = 8 + 4000 / 200 = 28.
+captured = []
+results_animated.capture = lambda binary, work, name, sets, size, frames: captured.append(sets) or name
+results_animated.wall_per_frame = lambda out: 5200.0
+assert results_animated.equal_time_samples("tallow", "/nowhere", {"before": 6000.0, "after (defaults)": 2000.0},
+                                           "8x8", 2) == (28, 24)
+assert captured == [["sss.samples=24"]], captured
+# Rounded down: 6100 ms would be N = 28.5, and 28 keeps the after row at or under the before row's time.
+assert results_animated.equal_time_samples("tallow", "/nowhere", {"before": 6100.0, "after (defaults)": 2000.0},
+                                           "8x8", 2)[0] == 28
 print("results scripts: ok")
