@@ -130,4 +130,16 @@ assert captured == [["sss.samples=24"]], captured
 # Rounded down: 6100 ms would be N = 28.5, and 28 keeps the after row at or under the before row's time.
 assert results_animated.equal_time_samples("tallow", "/nowhere", {"before": 6100.0, "after (defaults)": 2000.0},
                                            "8x8", 2)[0] == 28
+# Issue 17, point 3's verdict: wins counted per frame rate and N against the restart of the same
+# preset, rate and N (hand-made rows), and the default kept at 0 unless the history wins at N = 8.
+import results_history  # noqa: E402
+
+def hrow(fps, samples, history, rel):
+    return {"preset": "blob", "fps": fps, "samples": samples, "history": history, "rel_rmse": rel}
+hrows = [hrow(8, 8, 0, 0.05), hrow(8, 8, 8, 0.10), hrow(30, 1, 0, 0.17), hrow(30, 1, 8, 0.15), hrow(30, 1, 4, 0.18)]
+pairs = [(r, results_history.restart_of(hrows, r)) for r in hrows if r["history"] > 0]
+assert [b["rel_rmse"] for _, b in pairs] == [0.05, 0.17, 0.17], pairs
+text = "\n".join(results_history.verdict(pairs))
+assert "in 1 of 3 cases (0 of 1 at 8 fps and N = 8; 1 of 2 at 30 fps and N = 1)" in text, text
+assert "is 0 (restart), since at the default N = 8 the history mostly loses" in text, text
 print("results scripts: ok")
