@@ -20,6 +20,7 @@
 #include "app/commands/frame_stats.h"
 #include "app/commands/gnuplot.h"
 #include "app/commands/interrupt.h"
+#include "app/commands/mesh_command.h"
 #include "app/commands/progress.h"
 #include "app/commands/provenance.h"
 #include "app/commands/option_checks.h"
@@ -664,13 +665,8 @@ int runBench(const BenchOptions& o) {
   // The references: read, or integrated on the CPU and written as soon as each is done.
   for (std::size_t gi = 0; gi < groups.size(); ++gi) {
     ReferenceGroup& g = groups[gi];
-    if (!givenReference || o.equalTime) {
-      ReferenceOptions meshing;
-      meshing.scene = g.scene;
-      meshing.timeS = o.timeS;
-      meshing.gl = o.gl;
-      g.fieldMeshes = referenceFieldMeshes(meshing, loadScene(g.scene));
-    }
+    if (!givenReference || o.equalTime)
+      g.fieldMeshes = drawnFieldMeshes(loadScene(g.scene), g.scene.shaderDir, o.timeS, o.gl);
     if (givenReference) {
       loadGivenReference(o, width, height, g);
     } else {

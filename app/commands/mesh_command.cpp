@@ -1,6 +1,5 @@
 #include "app/commands/mesh_command.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -85,9 +84,7 @@ struct MeshingContext {
 sss::FieldMeshes drawnFieldMeshes(const LoadedScene& loaded, const std::string& shaderDir, double timeS,
                                   const std::string& gl) {
   const sss::Scene& scene = loaded.config.scene;
-  const bool anyField = std::any_of(scene.objects.begin(), scene.objects.end(),
-                                    [](const sss::SceneObject& o) { return o.shape == sss::ShapeKind::Field; });
-  if (!anyField) return {};
+  if (!sss::FieldObjects::any(scene)) return {};
   const MeshingContext meshing(gl, shaderDir);
   return meshEachField(placeFields(scene, loaded.presetName), loaded.config.render, timeS, meshing.shaders.get());
 }

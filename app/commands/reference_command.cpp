@@ -15,6 +15,7 @@
 #include "app/config/input_error.h"
 #include "gpu/image_io.h"
 #include "sss/bssrdf/bssrdf.h"
+#include "sss/field_objects.h"
 
 namespace tallow::app {
 namespace {
@@ -156,8 +157,7 @@ int runReference(const ReferenceOptions& options) {
   checkOutputFile("--out", out, {".exr"});
   const LoadedScene loaded = loadScene(options.scene);
   const sss::ReferenceSettings settings = referenceSettings(options, referenceFieldMeshes(options, loaded));
-  const bool anyField = std::any_of(loaded.config.scene.objects.begin(), loaded.config.scene.objects.end(),
-                                    [](const sss::SceneObject& o) { return o.shape == sss::ShapeKind::Field; });
+  const bool anyField = sss::FieldObjects::any(loaded.config.scene);
   sss::ReferenceResult r;
   // SIGINT/SIGTERM end the integration after the pass in hand; the passes done are written as a
   // valid reference, its pass count and error in the metadata.
