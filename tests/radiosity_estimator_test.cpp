@@ -642,7 +642,7 @@ TEST(SharedSampling, TheBandsErrorsAreCorrelatedGreyNoise) {
   // pixel shows as a change of brightness rather than of hue.
   constexpr int kTexels = 600;
   ScatteredRadiosityInput in = slabInput(fromTable("Marble"), BssrdfModel::Directional, 4);
-  for (const auto [a, b] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{0, 2}}) {
+  for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{0, 2}}) {
     in.bandSampling = BandSampling::PerBand;
     const double perBand = bandErrorCorrelation(in, kTexels, a, b);
     in.bandSampling = BandSampling::Shared;

@@ -16,6 +16,14 @@ uniform sampler2DArray uMaps;          // Σ over frames of B_N, with mipmaps
 // would otherwise average B over its whole footprint (more still on a map that sees x_o at a
 // grazing angle), where the camera, like the reference, takes B at the pixel's centre (issue 17).
 uniform float uMaxFootprint;
+// The footprint (after that cap) is scaled by F^(-1/4) with F the frames in the maps (1 for the VPLs'
+// patches): the paper's mipmaps smooth a young map's noise, but they average B, not sample it at x_o,
+// which biases B where it is far from linear across the footprint — the backlit bunny's rim, where the
+// thickness and so B change tenfold within a pixel, read 50% bright (issue 17). Shrinking the
+// footprint as the frames accumulate keeps the noise falling (the texels averaged fall as F^(-1/2)
+// while each texel's frames grow as F) and the bias going to 0 (as F^(-1/2)); once under a texel the
+// look-up is the bilinear tap at x_o (docs/radiosity-maps.md, "Algorithm 1").
+uniform float uFootprintScale;
 uniform sampler2DArrayShadow uMapDepth;
 struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // depthScale.x: depth units per metre
 layout(std430, binding = 5) readonly buffer MapViews { MapViewGpu mapViews[]; };
@@ -61,6 +69,8 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
       dx *= uMaxFootprint / footprint;
       dy *= uMaxFootprint / footprint;
     }
+    dx *= uFootprintScale;
+    dy *= uFootprintScale;
     float z = t.z - uEpsBias * mapViews[k].depthScale.x;
     vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
     float v = 0.25 * (texture(uMapDepth, vec4(t.xy + vec2(-texel.x, -texel.y), float(k), z)) +
