@@ -89,7 +89,7 @@ def section(work):
     add("the pixel's centre; that blur and the light G-buffer's 2.7 mm texels, under one 1/σ_tr of blue marble")
     add("(4.0 mm), made the 1 m bunny's 18.3% in the equal-time section (measured before both changes; that")
     add("section is regenerated only with the whole file). The fixed rows below have the footprint cap too,")
-    add("and, like every row, the footprint's shrinking as the frames accumulate (F^(−1/4), `uFootprintScale`;")
+    add("and, like every row, the footprint's shrinking as the frames accumulate (F^(−1/4), `uNarrowFootprint`;")
     add("docs/radiosity-maps.md): the converged rows take B nearer the pixel's centre than the first.")
     add("With fewer texels each pixel averages fewer texels' samples, so a first frame of the smaller auto maps")
     add("is noisier; each frame costs less, and the converged error is what the sizes decide.")

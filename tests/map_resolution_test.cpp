@@ -3,7 +3,6 @@
 // hand for the bunny at 0.01 and 1 m, and every choice a power of two that meets both bounds.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
@@ -99,16 +98,6 @@ TEST(MapResolution, AlgorithmOneFiltersOverAtMostHalfADiffusionLength) {
   // A map spans the views' sphere's diameter; 4 mm in a 1 m span is 0.004 of it, half of that 0.002.
   EXPECT_FLOAT_EQ(sss::maxMapFootprint(4.0, 0.5f), 0.002f);
   EXPECT_FLOAT_EQ(sss::maxMapFootprint(4.0, 0.005f), 0.2f);
-}
-
-TEST(MapResolution, TheFootprintShrinksAsTheFourthRootOfTheFrames) {
-  // F^(-1/4): the filter's bias (∝ footprint²) falls as 1/√F, and a look-up's variance,
-  // 1/(F × texels in the footprint) ∝ 1/(F × footprint²), as 1/√F too, until the footprint is a texel.
-  EXPECT_FLOAT_EQ(sss::mapFootprintScale(0), 1.0f);
-  EXPECT_FLOAT_EQ(sss::mapFootprintScale(1), 1.0f);
-  EXPECT_FLOAT_EQ(sss::mapFootprintScale(16), 0.5f);
-  EXPECT_FLOAT_EQ(sss::mapFootprintScale(256), 0.25f);
-  EXPECT_NEAR(sss::mapFootprintScale(64), 1.0 / std::sqrt(8.0), 1e-6);
 }
 
 }  // namespace

@@ -238,7 +238,7 @@ TEST(RadiosityMaps, ProgressiveErrorFallsLikeOneOverTheSquareRootOfFrames) {
   // A map texel after F frames averages F independent frames of the estimator, so against the texel
   // after R = 32 frames (which contains them) the RMS difference is σ √(1/F − 1/R): the ratio for
   // F = 1 and F = 4 is √((1 − 1/32)/(1/4 − 1/32)) = 2.10, and for F = 4 and 16, √7 = 2.65. The
-  // texels, not the picture: Algorithm 1's footprint also narrows with F (sss::mapFootprintScale), so
+  // texels, not the picture: Algorithm 1's footprint also narrows with F (shaders/maps/algorithm1.glsl), so
   // the picture's error falls faster than the maps' at first.
   constexpr int kReference = 32;
   PresetSession s("bunny", {"render.width=64", "render.height=48", "sss.maps=6", "sss.samples=2",
@@ -442,7 +442,7 @@ TEST(RadiosityMaps, AccumulatedMapsTakeBAtThePixelNotItsFootprintsAverage) {
   // within a pixel. Algorithm 1's mip look-up (the paper's noise filter) averages B over the pixel's
   // footprint on the map, which there is far above B at the pixel's centre, where the reference and
   // the per-pixel gather (method=no-cache: the same estimator at x_o itself) take it. The footprint
-  // shrinks as F^(-1/4) (sss::mapFootprintScale), so the first frame shows the filter's bias on the
+  // shrinks as F^(-1/4) (shaders/maps/algorithm1.glsl), so the first frame shows the filter's bias on the
   // rim — the check that this test can tell the two apart — and after 16 frames (half the footprint)
   // the bias, which goes as the footprint's square, is a quarter of it (measured: 1.375 → 1.118, a
   // ratio of 0.31; with the footprint kept, it stays).

@@ -16,14 +16,15 @@ uniform sampler2DArray uMaps;          // Σ over frames of B_N, with mipmaps
 // would otherwise average B over its whole footprint (more still on a map that sees x_o at a
 // grazing angle), where the camera, like the reference, takes B at the pixel's centre (issue 17).
 uniform float uMaxFootprint;
-// The footprint (after that cap) is scaled by F^(-1/4) with F the frames in the maps (1 for the VPLs'
-// patches): the paper's mipmaps smooth a young map's noise, but they average B, not sample it at x_o,
-// which biases B where it is far from linear across the footprint — the backlit bunny's rim, where the
-// thickness and so B change tenfold within a pixel, read 50% bright (issue 17). Shrinking the
-// footprint as the frames accumulate keeps the noise falling (the texels averaged fall as F^(-1/2)
-// while each texel's frames grow as F) and the bias going to 0 (as F^(-1/2)); once under a texel the
-// look-up is the bilinear tap at x_o (docs/radiosity-maps.md, "Algorithm 1").
-uniform float uFootprintScale;
+// For the camera's look-ups (uNarrowFootprint = 1; the VPLs keep their patches' footprint) the
+// footprint, after that cap, is scaled by F^(-1/4), F the frames the texels at x_o hold (level 0's
+// alpha; with sss.history each texel counts its own). The paper's mipmaps smooth a young map's noise,
+// but they average B rather than sample it at x_o, which biases B where it is far from linear across
+// the footprint: the backlit bunny's rim, where the thickness and so B change tenfold within a pixel,
+// read 50% bright (issue 17). Narrowing the footprint as the frames accumulate keeps the noise falling
+// (the texels averaged fall as F^(-1/2) while each texel's frames grow as F) and the bias going to 0
+// (as F^(-1/2)); once under a texel the look-up is the bilinear tap at x_o (docs/radiosity-maps.md).
+uniform int uNarrowFootprint;
 uniform sampler2DArrayShadow uMapDepth;
 struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // depthScale.x: depth units per metre
 layout(std430, binding = 5) readonly buffer MapViews { MapViewGpu mapViews[]; };
@@ -69,8 +70,6 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
       dx *= uMaxFootprint / footprint;
       dy *= uMaxFootprint / footprint;
     }
-    dx *= uFootprintScale;
-    dy *= uFootprintScale;
     float z = t.z - uEpsBias * mapViews[k].depthScale.x;
     vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
     float v = 0.25 * (texture(uMapDepth, vec4(t.xy + vec2(-texel.x, -texel.y), float(k), z)) +
@@ -82,6 +81,13 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     // the normalisation by n keeps every point that any map sees.
     if (uViewWeight > 0.0) v *= pow(max(cosTheta, 1e-4), uViewWeight);
     if (v <= 0.0) continue;
+    if (uNarrowFootprint != 0) {
+      float frames = textureLod(uMaps, vec3(t.xy, float(k)), 0.0).a;
+      if (frames > 1.0) {
+        dx *= pow(frames, -0.25);
+        dy *= pow(frames, -0.25);
+      }
+    }
     vec4 m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
     if (m.a <= 0.0) continue;
     if (firstMap < 0) firstMap = k;

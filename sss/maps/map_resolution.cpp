@@ -42,8 +42,4 @@ float maxMapFootprint(double shortestDiffusionMm, float viewSphereRadiusM) {
   return static_cast<float>(0.5 * shortestDiffusionMm / std::max(spanMm, 1e-12));
 }
 
-float mapFootprintScale(int frames) {
-  return frames <= 1 ? 1.0f : static_cast<float>(std::pow(static_cast<double>(frames), -0.25));
-}
-
 }  // namespace tallow::sss

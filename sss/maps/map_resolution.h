@@ -43,9 +43,5 @@ int autoLightMapSize(double diameterMm, double shortestDiffusionMm, bool pointLi
 /// Algorithm 1's uMaxFootprint for the camera's look-ups, in map texture units (a map spans the
 /// views' sphere diameter): half the shortest 1/σ_tr.
 float maxMapFootprint(double shortestDiffusionMm, float viewSphereRadiusM);
-/// Algorithm 1's uFootprintScale: F^(-1/4) for F ≥ 1 frames accumulated in the maps (1 for F ≤ 1). The
-/// mip filter's bias falls as the footprint's square, F^(-1/2); the variance of a look-up as
-/// 1/(F × texels in the footprint), F^(-1/2) while the footprint spans more than a texel.
-float mapFootprintScale(int frames);
 
 }  // namespace tallow::sss

@@ -413,7 +413,7 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   const float radius = sphere_.radius;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMapViewsBinding, cameraViews_.id());
   p.set("uMaxFootprint", pixelLookups ? maxMapFootprint(shortestDiffusionMm_, viewSphere_.radius) : 1e30f);
-  p.set("uFootprintScale", pixelLookups ? mapFootprintScale(frames_) : 1.0f);
+  p.set("uNarrowFootprint", pixelLookups ? 1 : 0);
   p.set("uMapCount", static_cast<int>(views_.size()));
   p.set("uEpsBias", settings.sss.bias * radius);
   p.set("uEpsComb", settings.sss.comb * radius);
