@@ -83,10 +83,9 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     if (v <= 0.0) continue;
     if (uNarrowFootprint != 0) {
       float frames = textureLod(uMaps, vec3(t.xy, float(k)), 0.0).a;
-      if (frames > 1.0) {
-        dx *= pow(frames, -0.25);
-        dy *= pow(frames, -0.25);
-      }
+      float narrow = frames > 1.0 ? pow(frames, -0.25) : 1.0;
+      dx *= narrow;
+      dy *= narrow;
     }
     vec4 m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
     if (m.a <= 0.0) continue;
