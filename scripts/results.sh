@@ -165,8 +165,12 @@ if any(s in mrenderer.lower() for s in ("llvmpipe", "softpipe", "swrast", "lavap
     add("**The GPU figures below come from a software rasteriser (%s) running on this CPU. They say" % mrenderer)
     add("nothing about a real GPU**; they only show how the maps' cost scales with K and N and that they run.")
     add("")
-add("Preset `%s` at %d×%d, %d² maps, %d² light G-buffers, %s dipole, `sss.gather` = %s, %d light(s)."
-    % (m["preset"], ms["width"], ms["height"], ms["map_size"], ms["light_map_size"], ms["model"],
+def squared(size):
+    """A map size as the probe recorded it: a number of texels a side, or `auto` (sized from the scene)."""
+    return "%d²" % size if isinstance(size, int) else "`%s`-sized" % size
+
+add("Preset `%s` at %d×%d, %s maps, %s light G-buffers, %s dipole, `sss.gather` = %s, %d light(s)."
+    % (m["preset"], ms["width"], ms["height"], squared(ms["map_size"]), squared(ms["light_map_size"]), ms["model"],
        ms.get("gather") or "—", m["rows"][0]["lights"]))
 add("For each K (`sss.maps`)")
 add("and N (`sss.samples`) the renderer renders one warm-up frame, which restarts the maps (light")
