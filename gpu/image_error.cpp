@@ -90,29 +90,64 @@ std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& ref
   return HalvesError{half(top, split), half(split, bottom + 1)};
 }
 
-std::size_t fireflyCount(const Image& image, const Image& mask, float factor) {
+namespace {
+
+/// Median (the upper one of an even count) of channel c over the object pixels of the 5×5 window
+/// around (x, y); `window` is scratch space.
+float neighbourhoodMedian(const Image& image, const Image& mask, int x, int y, int c, std::vector<float>& window) {
+  window.clear();
+  for (int v = std::max(0, y - 2); v <= std::min(image.height - 1, y + 2); ++v)
+    for (int u = std::max(0, x - 2); u <= std::min(image.width - 1, x + 2); ++u)
+      if (isObject(mask.at(u, v))) window.push_back(image.at(u, v)[c]);
+  if (window.empty()) return 0.0f;
+  const auto middle = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+  std::nth_element(window.begin(), middle, window.end());
+  return *middle;
+}
+
+void checkFireflySizes(const Image& image, const Image& mask) {
   if (image.width != mask.width || image.height != mask.height)
     throw std::invalid_argument("firefly count: the image is " + sizeText(image) + " but the object mask is " +
                                 sizeText(mask));
-  std::size_t count = 0;
+}
+
+float ratio(float value, float median) {
+  if (median != 0.0f) return value / median;
+  return value == 0.0f ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+}
+
+}  // namespace
+
+std::vector<Firefly> fireflies(const Image& image, const Image& mask, float factor) {
+  checkFireflySizes(image, mask);
+  std::vector<Firefly> found;
   std::vector<float> window;
   window.reserve(25);
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       if (!isObject(mask.at(x, y))) continue;
-      bool firefly = false;
-      for (int c = 0; c < 3 && !firefly; ++c) {
-        window.clear();
-        for (int v = std::max(0, y - 2); v <= std::min(image.height - 1, y + 2); ++v)
-          for (int u = std::max(0, x - 2); u <= std::min(image.width - 1, x + 2); ++u)
-            if (isObject(mask.at(u, v))) window.push_back(image.at(u, v)[c]);
-        const auto middle = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
-        std::nth_element(window.begin(), middle, window.end());
-        firefly = image.at(x, y)[c] > factor * *middle;
+      for (int c = 0; c < 3; ++c) {
+        const float median = neighbourhoodMedian(image, mask, x, y, c, window);
+        if (image.at(x, y)[c] > factor * median) {
+          found.push_back({x, y, c, ratio(image.at(x, y)[c], median)});
+          break;
+        }
       }
-      count += firefly ? 1 : 0;
     }
-  return count;
+  return found;
+}
+
+std::size_t fireflyCount(const Image& image, const Image& mask, float factor) {
+  return fireflies(image, mask, factor).size();
+}
+
+float fireflyRatio(const Image& image, const Image& mask, int x, int y, int c) {
+  checkFireflySizes(image, mask);
+  if (x < 0 || y < 0 || x >= image.width || y >= image.height || c < 0 || c > 2)
+    throw std::invalid_argument("firefly ratio: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                ") channel " + std::to_string(c) + " is outside the " + sizeText(image) + " image");
+  std::vector<float> window;
+  return ratio(image.at(x, y)[c], neighbourhoodMedian(image, mask, x, y, c, window));
 }
 
 Image differenceImage(const Image& image, const Image& reference, const Image& mask) {

@@ -55,6 +55,19 @@ std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& ref
 inline constexpr float kFireflyFactor = 4.0f;
 std::size_t fireflyCount(const Image& image, const Image& mask, float factor = kFireflyFactor);
 
+/// One firefly: its pixel, the first channel above the threshold, and that channel's value over its
+/// neighbourhood's median (> factor; infinite where the median is 0).
+struct Firefly {
+  int x = 0, y = 0, channel = 0;
+  float overMedian = 0.0f;
+};
+/// The pixels fireflyCount counts, in row order (top row first), with the same throws.
+std::vector<Firefly> fireflies(const Image& image, const Image& mask, float factor = kFireflyFactor);
+/// Channel c of pixel (x, y) over the median of that channel in its 5×5 neighbourhood's object
+/// pixels, the statistic fireflies() thresholds (infinite where that median is 0 and the value is not;
+/// NaN where both are 0). Lets a caller ask how close another image's pixel came to being one.
+float fireflyRatio(const Image& image, const Image& mask, int x, int y, int c);
+
 /// |Δ| per band, alpha e_p (both 0 outside the mask), for pictures. Same errors as imageError.
 Image differenceImage(const Image& image, const Image& reference, const Image& mask);
 

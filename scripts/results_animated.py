@@ -37,6 +37,7 @@ SIZE = "320x180"
 # it is kept well under the after rows' (4-5% against 2%-references on 2026-12-03).
 REF_REL_ERROR = "0.01"
 SAMPLES = 8  # sss.samples, the default, of the first after rows
+FIREFLY_FACTOR = 4  # gpu::kFireflyFactor: a channel above 4× its 5×5 median
 # Rows: (name, binary "before"/"after", extra settings). The equal-time row is added by run().
 ROWS = (("before", "before", []),
         ("after, K = 16", "after", ["sss.maps=16"]),
@@ -150,6 +151,37 @@ def load_row(work, name):
     return stats, errors
 
 
+CHANNELS = ("red", "green", "blue")
+
+
+def span(values, digits):
+    """'a' or 'a–b' for the range of values, at the given digits."""
+    lo, hi = "%.*f" % (digits, min(values)), "%.*f" % (digits, max(values))
+    return lo if lo == hi else "%s–%s" % (lo, hi)
+
+
+def add_extra_fireflies(stats, errors, add):
+    """The row's fireflies at pixels where the reference has none (`tallow compare --json`'s
+    fireflies_not_in_reference), by pixel and channel: in which frames (with their K), how far over the
+    reference it is there, and how near the reference itself came to the threshold there (noise, or a
+    feature at it)."""
+    maps = [(f.get("sss") or {}).get("maps", "?") for f in stats["frames"]]
+    by_pixel = {}
+    for frame, e in enumerate(errors):
+        for f in e.get("fireflies_not_in_reference") or []:
+            by_pixel.setdefault((f["x"], f["y"], f["channel"]), []).append((frame, f))
+    if not by_pixel:
+        return
+    for (x, y, c), seen in sorted(by_pixel.items(), key=lambda item: (-len(item[1]), item[0])):
+        refs = [f["reference_over_median"] for _, f in seen if f.get("reference_over_median") is not None]
+        overs = [f["over_reference"] for _, f in seen if f.get("over_reference") is not None]
+        add("  - defaults, pixel (%d, %d), %s, frame(s) %s (K %s): %s× the reference there; the reference's own ratio"
+            " to its 5×5 median there %s (a firefly above %g)." % (
+                x, y, CHANNELS[c], ", ".join(str(i) for i, _ in seen),
+                ", ".join(str(maps[i]) if i < len(maps) else "?" for i, _ in seen), span(overs, 2) if overs else "—",
+                span(refs, 2) if refs else "—", FIREFLY_FACTOR))
+
+
 def section(work):
     with open(os.path.join(work, "equal_time.json")) as f:
         equal = json.load(f)
@@ -198,6 +230,7 @@ def section(work):
         fmt(before["lower"]), fmt(after["lower"]), "met" if abs(after["lower"] - 1.0) <= 0.05 else "not met"))
     add("- No more fireflies than the reference's own: after %g against %g (%s)." % (
         after["ff"], after["rff"], "met" if after["ff"] <= after["rff"] else "not met"))
+    add_extra_fireflies(*rows["after (defaults)"], add)
     ratio = before["rel"] / eq["rel"]
     add("- At equal wall time (%.0f ms before, %.0f ms after with N = %d), relative RMSE %s before against %s after:"
         " %.2f× lower (target 3×: %s)." % (before["wall"], eq["wall"], equal["samples"], pct(before["rel"]),

@@ -56,6 +56,21 @@ TEST(CompareJson, ErrorsOfKnownImages) {
   const json f = readJsonFile(dir.path() / "f.json")["error"];
   EXPECT_EQ(f["fireflies"], 1);
   EXPECT_EQ(f["reference_fireflies"], 0);
+  // Listed with its pixel, its ratio to its median (20 / 1) and the reference's own there (1 / 1).
+  ASSERT_EQ(f["fireflies_not_in_reference"].size(), 1u);
+  const json& spotted = f["fireflies_not_in_reference"][0];
+  EXPECT_EQ(spotted["x"], 3);
+  EXPECT_EQ(spotted["y"], 2);
+  EXPECT_EQ(spotted["channel"], 0);
+  EXPECT_NEAR(spotted["over_median"].get<double>(), 20.0, 1e-6);
+  EXPECT_NEAR(spotted["reference_over_median"].get<double>(), 1.0, 1e-6);
+  EXPECT_NEAR(spotted["over_reference"].get<double>(), 20.0, 1e-6);
+  // Against itself it has the firefly too: none listed.
+  r = runTallow({"compare", spot.string(), spot.string(), "--json", (dir.path() / "s.json").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const json self = readJsonFile(dir.path() / "s.json")["error"];
+  EXPECT_EQ(self["reference_fireflies"], 1);
+  EXPECT_TRUE(self["fireflies_not_in_reference"].empty());
 
   // A mask marking only the lower half: only its pixels count.
   gpu::Image lowerOnly = halves(0.0f, 0.0f);

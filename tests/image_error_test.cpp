@@ -176,6 +176,35 @@ TEST(FireflyCount, ChannelsAboveFourTimesTheirNeighbourhoodsMedian) {
   EXPECT_EQ(gpu::fireflyCount(image, mask, 3.0f), 4u);  // the factor is the threshold
 }
 
+TEST(FireflyCount, ListsEachPixelOnceWithItsFirstChannelAndRatio) {
+  gpu::Image image = constant({1.0f, 2.0f, 1.0f}, 12, 10);
+  gpu::Image mask = constant({0, 0, 0}, 12, 10);
+  image.at(7, 2).b = 5.0f;                              // blue over its median 1: ratio 5
+  image.at(3, 6) = glm::vec4(9.0f, 18.0f, 1.0f, 1.0f);  // red and green: listed once, by red (9)
+  const std::vector<gpu::Firefly> found = gpu::fireflies(image, mask);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_EQ(found[0].x, 7);  // row order: y = 2 first
+  EXPECT_EQ(found[0].y, 2);
+  EXPECT_EQ(found[0].channel, 2);
+  EXPECT_FLOAT_EQ(found[0].overMedian, 5.0f);
+  EXPECT_EQ(found[1].x, 3);
+  EXPECT_EQ(found[1].y, 6);
+  EXPECT_EQ(found[1].channel, 0);
+  EXPECT_FLOAT_EQ(found[1].overMedian, 9.0f);
+  EXPECT_EQ(gpu::fireflyCount(image, mask), found.size());
+  // The ratio of a pixel that is no firefly: green 3.5 over the median 2 of its window.
+  image.at(9, 8).g = 3.5f;
+  EXPECT_FLOAT_EQ(gpu::fireflyRatio(image, mask, 9, 8, 1), 1.75f);
+  // A median of 0: infinite over a lit pixel, NaN over a black one.
+  gpu::Image black = constant({0, 0, 0}, 3, 3);
+  const gpu::Image blackMask = constant({0, 0, 0}, 3, 3);
+  EXPECT_TRUE(std::isnan(gpu::fireflyRatio(black, blackMask, 1, 1, 0)));
+  black.at(1, 1).r = 1.0f;
+  EXPECT_TRUE(std::isinf(gpu::fireflyRatio(black, blackMask, 1, 1, 0)));
+  EXPECT_THROW(gpu::fireflyRatio(image, mask, 12, 0, 0), std::invalid_argument);
+  EXPECT_THROW(gpu::fireflyRatio(image, mask, 0, 0, 3), std::invalid_argument);
+}
+
 TEST(FireflyCount, EdgesAndTheObjectsBorderAreNoFireflies) {
   // A step from 1 to 10 at x = 10: a pixel on either side has a majority of its side in its 5×5
   // window, so its median is its own level.

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -62,15 +63,44 @@ nlohmann::json changedParameters(const nlohmann::json& before, const nlohmann::j
   return out;
 }
 
+namespace {
+
+/// JSON numbers cannot be infinite or NaN: those become null.
+nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+/// The image's fireflies at pixels where the reference has none, at most kListedFireflies of them, each
+/// with how near the reference's own pixel came to the threshold: what tells a speckle of noise (the
+/// reference near its median there) from a feature at the threshold that a small bias tips over.
+constexpr std::size_t kListedFireflies = 32;
+nlohmann::json firefliesNotInReference(const std::vector<gpu::Firefly>& ours, const std::vector<gpu::Firefly>& theirs,
+                                       const gpu::Image& image, const gpu::Image& reference, const gpu::Image& mask) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const gpu::Firefly& f : ours) {
+    if (list.size() == kListedFireflies) break;
+    const bool shared = std::any_of(theirs.begin(), theirs.end(), [&](const gpu::Firefly& r) { return r.x == f.x && r.y == f.y; });
+    if (shared) continue;
+    const float value = image.at(f.x, f.y)[f.channel], ref = reference.at(f.x, f.y)[f.channel];
+    list.push_back({{"x", f.x}, {"y", f.y}, {"channel", f.channel}, {"over_median", finiteOrNull(f.overMedian)},
+                    {"reference_over_median", finiteOrNull(gpu::fireflyRatio(reference, mask, f.x, f.y, f.channel))},
+                    {"over_reference", finiteOrNull(ref > 0.0f ? value / ref : std::numeric_limits<double>::infinity())}});
+  }
+  return list;
+}
+
+}  // namespace
+
 nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError) {
   const gpu::ImageError e = gpu::imageError(image, reference, standardError);
   const std::optional<gpu::HalvesError> halves = gpu::imageErrorByHalf(image, reference, standardError);
+  const std::vector<gpu::Firefly> ours = gpu::fireflies(image, standardError);
+  const std::vector<gpu::Firefly> theirs = gpu::fireflies(reference, standardError);
   return {{"rel_rmse", e.relRmse},
           {"mean_ratio", e.meanRatio},
           {"upper_mean_ratio", halves ? nlohmann::json(halves->upper.meanRatio) : nlohmann::json(nullptr)},
           {"lower_mean_ratio", halves ? nlohmann::json(halves->lower.meanRatio) : nlohmann::json(nullptr)},
-          {"fireflies", gpu::fireflyCount(image, standardError)},
-          {"reference_fireflies", gpu::fireflyCount(reference, standardError)},
+          {"fireflies", ours.size()},
+          {"reference_fireflies", theirs.size()},
+          {"fireflies_not_in_reference", firefliesNotInReference(ours, theirs, image, reference, standardError)},
           {"pixels", e.pixels}};
 }
 
@@ -81,7 +111,7 @@ nlohmann::json toJson(const RunRecord& run) {
   std::map<std::string, std::vector<double>> perPass, perPassCpu, perPassThread;
   std::vector<double> gpuTotal, cpuTotal, threadTotal, changes;
   // A GPU time not read (NaN) is null, and left out of the medians.
-  const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  const auto number = &finiteOrNull;
   for (const FrameRecord& f : run.frames) {
     json passes = json::object(), cpu = json::object(), thread = json::object();
     for (const auto& p : f.gpu.passes) {
@@ -96,8 +126,8 @@ nlohmann::json toJson(const RunRecord& run) {
                       {"gpu_ms", passes}, {"gpu_total_ms", number(f.gpu.gpuTotalMs)},
                       {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
                       {"thread_cpu_ms", thread}, {"thread_cpu_total_ms", f.gpu.threadCpuTotalMs},
-                      {"receiver_change", std::isfinite(f.receiverChange) ? json(f.receiverChange) : json(nullptr)},
-                      {"translucent_change", std::isfinite(f.translucentChange) ? json(f.translucentChange) : json(nullptr)},
+                      {"receiver_change", number(f.receiverChange)},
+                      {"translucent_change", number(f.translucentChange)},
                       {"reference_error", f.reference},
                       {"point_lights", [&] {
                          json lights = json::array();

@@ -44,7 +44,10 @@ std::size_t residentBytes();
 /// stats.json's per-frame "reference_error" against a reference (gpu::imageError over the pixels the
 /// reference's standard-error image marks): {"rel_rmse", "mean_ratio", "upper_mean_ratio",
 /// "lower_mean_ratio" (the object's upper and lower rows; null when it spans one row), "fireflies"
-/// and "reference_fireflies" (gpu::fireflyCount of the image and of the reference), "pixels"}.
+/// and "reference_fireflies" (gpu::fireflyCount of the image and of the reference),
+/// "fireflies_not_in_reference" (the image's fireflies at pixels where the reference has none, at most
+/// 32: {"x", "y", "channel", "over_median": the channel over its 5×5 median, "reference_over_median":
+/// the reference's own ratio there, "over_reference": image / reference in that channel}), "pixels"}.
 nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError);
 
 

@@ -94,7 +94,7 @@ with tempfile.TemporaryDirectory() as tmp:
 import results_animated  # noqa: E402
 
 with tempfile.TemporaryDirectory() as tmp:
-    def row(name, samples, maps, walls, rels, lowers, fireflies):
+    def row(name, samples, maps, walls, rels, lowers, fireflies, extra=()):
         d = results_animated.row_dir(tmp, name)
         os.makedirs(d)
         frames = [{"time_s": 12 + i / 8, "wall_ms": w, "sss": {"maps": maps}} for i, w in enumerate(walls)]
@@ -102,12 +102,20 @@ with tempfile.TemporaryDirectory() as tmp:
             json.dump({"gl": {"GL_RENDERER": "llvmpipe (test)"}, "parameters": {"sss.samples": samples},
                        "frames": frames}, f)
         for i, (rel, lower, ff) in enumerate(zip(rels, lowers, fireflies)):
+            listed = [e for frame, e in extra if frame == i]
             with open(os.path.join(d, "error_%04d.json" % i), "w") as f:
                 json.dump({"error": {"rel_rmse": rel, "upper_mean_ratio": 1.0, "lower_mean_ratio": lower,
-                                     "fireflies": ff, "reference_fireflies": 4, "pixels": 3000}}, f)
+                                     "fireflies": ff, "reference_fireflies": 4, "pixels": 3000,
+                                     "fireflies_not_in_reference": listed}}, f)
+    # The defaults' extra fireflies: one pixel in frames 1 and 2 (a feature at the reference's threshold),
+    # another in frame 2 only (noise, the reference near its median there).
+    feature = lambda over, ref: {"x": 181, "y": 133, "channel": 2, "over_median": 4.2, "reference_over_median": ref,
+                                 "over_reference": over}
+    extra = [(1, feature(1.09, 3.86)), (2, feature(1.1, 3.95)),
+             (2, {"x": 5, "y": 6, "channel": 0, "over_median": 9.0, "reference_over_median": 1.2, "over_reference": 7.5})]
     row("before", 8, 16, [9000, 6000, 5000, 7000], [0.30, 0.31, 0.29, 0.30], [0.80, 0.82, 0.81, 0.80], [20, 21, 19, 22])
     row("after, K = 16", 8, 16, [5000, 4000, 4000, 4000], [0.10, 0.10, 0.10, 0.10], [0.97] * 4, [0] * 4)
-    row("after (defaults)", 8, 8, [5000, 2000, 2000, 2000], [0.12, 0.12, 0.12, 0.12], [0.97] * 4, [0, 0, 5, 0])
+    row("after (defaults)", 8, 8, [5000, 2000, 2000, 2000], [0.12, 0.12, 0.12, 0.12], [0.97] * 4, [0, 0, 5, 0], extra)
     row("after, N = 24 (equal time)", 24, 8, [8000, 6000, 6000, 6000], [0.09, 0.11, 0.10, 0.10], [0.98] * 4, [0] * 4)
     with open(os.path.join(tmp, "equal_time.json"), "w") as f:
         json.dump({"name": "after, N = 24 (equal time)", "samples": 24, "first_guess": 20}, f)
@@ -118,6 +126,12 @@ with tempfile.TemporaryDirectory() as tmp:
     assert "| after (defaults) | 8 | 8 | 12.0% | 1.000 / 0.970 | 0 (4) | 2000 |" in text, text
     assert "before 0.805, after 0.970 (met)" in text, text
     assert "after 0 against 4 (met)" in text, text
+    # By pixel, the one seen in more frames first; ranges over its frames.
+    assert ("  - defaults, pixel (181, 133), blue, frame(s) 1, 2 (K 8, 8): 1.09–1.10× the reference there; the"
+            " reference's own ratio to its 5×5 median there 3.86–3.95 (a firefly above 4).") in text, text
+    assert ("  - defaults, pixel (5, 6), red, frame(s) 2 (K 8): 7.50× the reference there; the reference's own ratio"
+            " to its 5×5 median there 1.20 (a firefly above 4).") in text, text
+    assert text.index("pixel (181, 133)") < text.index("pixel (5, 6)") < text.index("At equal wall time"), text
     assert "relative RMSE 30.0% before against 10.0% after: 3.00× lower (target 3×: met)" in text, text
 # The equal-time N: guess round(8 × 6000 / 2000) = 24; its frames at 5200 ms give 200 ms per sample
 # over the defaults' 2000 ms at N = 8, so 6000 ms is reached at N = 8 + 4000 / 200 = 28.
