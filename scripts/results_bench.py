@@ -593,8 +593,9 @@ def report_vpl(work, add, images, rel_images):
     add("")
     add("| size | N_vpl | receiver pixels | vpl pass [ms] | surface pass [ms] | surface − surface(N=0) per 1000 VPL·Mpixel [ms] |")
     add("|---|---:|---:|---:|---:|---:|")
+    spreads = []
     for size in VPL_COST_SIZES:
-        base = None
+        base = spread = None
         for n in VPL_COST_COUNTS:
             path = f"{work}/vpl_cost/{size}_{n}/stats.json"
             if not os.path.exists(path):
@@ -602,16 +603,21 @@ def report_vpl(work, add, images, rel_images):
             st = load(path)
             frames = st["frames"]
             vpl = median([f["gpu_ms"]["vpl"] for f in frames if "vpl" in f["gpu_ms"]])
-            surface = median([f["gpu_ms"]["surface"] for f in frames[3:]])
+            surfaces = [f["gpu_ms"]["surface"] for f in frames[3:]]
+            surface = median(surfaces)
             w, h = st["resolution"]
             if n == 0:
-                base = surface
-            per = None
+                # Half the range of the N = 0 frames' times: a difference within it is the timer's noise.
+                base, spread = surface, 0.5 * (max(surfaces) - min(surfaces))
+                spreads.append("±%s ms at %s" % (fmt(spread, 1), size))
+            per = "—"
             if base is not None and n > 0:
-                per = (surface - base) / (n / 1000.0 * w * h / 1e6)
-            add("| %s | %d | %d | %s | %s | %s |" % (size, n, w * h, fmt(vpl, 2), fmt(surface, 2), fmt(per, 1)))
+                per = (fmt((surface - base) / (n / 1000.0 * w * h / 1e6), 1) if surface - base > spread
+                       else "— (within noise)")
+            add("| %s | %d | %d | %s | %s | %s |" % (size, n, w * h, fmt(vpl, 2), fmt(surface, 2), per))
     add("")
-    add("(receiver pixels: the image size; the table fills most of it.)")
+    add("(receiver pixels: the image size; the table fills most of it. Within noise: the surface pass took no more"
+        " than at N = 0 by half the range of the N = 0 frames' times, %s.)" % ", ".join(spreads))
     add("")
     # Flicker.
     add("Temporal stability: the candle melting from t = 12 s at 30 frames per second under a flame fixed where it")

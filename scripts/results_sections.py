@@ -28,6 +28,20 @@ def whole(path):
     return run is None or run.get("state") == "complete"
 
 
+def run_dates(stats_list):
+    """When the runs behind a section were made, from their stats.json provenance ("date", ISO UTC):
+    " of 2026-12-03 08:41–09:00 UTC" (another day in full), or "" when none says. A section assembled
+    from kept runs (TALLOW_RESULTS_RESUME) then says when it was measured, not only when it was written."""
+    dates = sorted(st.get("provenance", {}).get("date", "") for st in stats_list)
+    dates = [d.rstrip("Z").replace("T", " ")[:16] for d in dates if d]
+    if not dates:
+        return ""
+    first, last = dates[0], dates[-1]
+    if first == last:
+        return " of %s UTC" % first
+    return " of %s–%s UTC" % (first, last[11:] if last[:10] == first[:10] else last)
+
+
 def pct(x):
     """A share as the tables print it: 0.0734 -> "7.3%" (None: a dash)."""
     return "—" if x is None else "%.1f%%" % (100.0 * x)

@@ -156,4 +156,11 @@ assert [b["rel_rmse"] for _, b in pairs] == [0.05, 0.17, 0.17], pairs
 text = "\n".join(results_history.verdict(pairs))
 assert "in 1 of 3 cases (0 of 1 at 8 fps and N = 8; 1 of 2 at 30 fps and N = 1)" in text, text
 assert "is 0 (restart), since at the default N = 8 the history mostly loses" in text, text
+# A section's runs' dates from their provenance: one day, across midnight, none, one run.
+dated = lambda *ds: [{"provenance": {"date": d}} for d in ds]
+assert results_sections.run_dates(dated("2026-12-03T09:00:02Z", "2026-12-03T08:41:57Z")) == " of 2026-12-03 08:41–09:00 UTC"
+assert (results_sections.run_dates(dated("2026-12-02T23:41:57Z", "2026-12-03T00:10:02Z"))
+        == " of 2026-12-02 23:41–2026-12-03 00:10 UTC")
+assert results_sections.run_dates([{}, {"provenance": {}}]) == ""
+assert results_sections.run_dates(dated("2026-12-03T08:41:57Z")) == " of 2026-12-03 08:41 UTC"
 print("results scripts: ok")
