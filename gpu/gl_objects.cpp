@@ -35,6 +35,7 @@ const char* formatName(GLenum format) {
   switch (format) {
     case GL_R8: return "GL_R8";
     case GL_RG8: return "GL_RG8";
+    case GL_RG8UI: return "GL_RG8UI";
     case GL_R16F: return "GL_R16F";
     case GL_RGBA8: return "GL_RGBA8";
     case GL_SRGB8_ALPHA8: return "GL_SRGB8_ALPHA8";
@@ -144,7 +145,7 @@ namespace {
 std::size_t bytesPerTexel(GLenum format) {
   switch (format) {
     case GL_R8: return 1;
-    case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
+    case GL_RG8: case GL_RG8UI: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
     case GL_DEPTH_COMPONENT24: return 3;  // typically padded to 4
     case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_RG16F: case GL_R32UI: case GL_R32I:
     case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_R11F_G11F_B10F: return 4;

@@ -141,12 +141,12 @@ def k_section(work):
     benches = load(work, "bench_k")
     lines = []
     add = lines.append
-    add("K from coverage (`sss.maps=auto`, the default; `sss/maps/map_count.h`). Algorithm 1 counts, for every")
-    add("pixel of the object and every VPL, the first map that sees it and, for the pixels, the first that")
-    add("sees it within 60° of its normal; the renderer reads the counts back behind a fence (no frame waits)")
-    add("and takes the fewest of the nested Halton directions that leave at most 0.1% more of the pixels or")
-    add("VPLs with no map, and 2% more of the pixels with no facing map, than the most maps it tried (16 at")
-    add("first, doubled up to 32 while either is exceeded). A change of K restarts the maps. Sizes `auto` in")
+    add("K from coverage (`sss.maps=auto`, the default; `sss/maps/map_count.h`). The GPU counts, for every")
+    add("visible pixel of the object and every VPL, the first map that sees it and, for the pixels, the second")
+    add("that sees it within 60° of its normal; the renderer reads the counts back behind a fence (no frame")
+    add("waits) and takes the fewest of the nested Halton directions that leave at most 0.1% more of the pixels")
+    add("or VPLs with no map, and 2% more of the pixels with fewer than two facing maps, than the most maps it")
+    add("tried (16 at first, doubled up to 32 while either is exceeded). A change of K restarts the maps. Sizes `auto` in")
     add("both rows; the first frame of a bench is the one after the warm-up, with what the chooser knew then.")
     add("")
     add("| scale [m] | sss.maps | K used | first frame rel. RMSE | converged rel. RMSE | upper / lower | fireflies (ref.) | median wall per accumulating frame [ms] | reference ε |")

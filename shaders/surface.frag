@@ -16,7 +16,7 @@
 #include "peers/image_space/result.glsl"
 #include "peers/sslpv/lookup.glsl"
 
-// Depth test before shading: hidden fragments neither cost the shading nor count toward sss.maps=auto.
+// Depth test before shading: fragments behind what is already drawn cost no shading.
 layout(early_fragment_tests) in;
 
 in vec3 vWorldPosition;
@@ -41,6 +41,9 @@ uniform float uObjectEta;        // its relative index of refraction
 
 layout(location = 0) out vec4 oRadiance;
 layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it, b: opaque
+// sss.maps=auto's per-pixel record, counted after the pass (maps/coverage_histogram.comp): the bins
+// + 1 of Algorithm 1's first map and second facing map (0: not shaded by Algorithm 1).
+layout(location = 2) out uvec2 oCoverageBins;
 
 const float PI = 3.14159265358979;
 
@@ -63,14 +66,14 @@ void main() {
   bool backFacing = dot(n, toCamera) < 0.0;
   if (uTranslucent != 0) {
     float seenBy = 1.0;
-    int firstMap = -1, firstFacingMap = -1;
+    int firstMap = -1, secondFacingMap = -1;
     vec3 b = uTranslucentMethod == 3 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
              : uTranslucentMethod == 2
                  ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
              : uTranslucentMethod == 4 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
                                        : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy, firstMap,
-                                                                            firstFacingMap);
-    if (uTranslucentMethod == 1) countMapCoverage(firstMap, firstFacingMap);  // sss.maps=auto
+                                                                            secondFacingMap);
+    oCoverageBins = uTranslucentMethod == 1 ? uvec2(coverageBin(firstMap), coverageBin(secondFacingMap)) + 1u : uvec2(0u);
     vec3 v = normalize(toCamera);
     vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);
@@ -84,4 +87,5 @@ void main() {
   vec3 e = lightIrradiance(vWorldPosition, n) + vplIrradiance(vWorldPosition, n);
   oRadiance = vec4(uAlbedo / PI * e + uAlbedo * uAmbient, 1.0);
   oCoverage = vec4(0.0, 0.0, 1.0, 0.0);
+  oCoverageBins = uvec2(0u);
 }

@@ -149,6 +149,8 @@ void CameraPass::run(FrameContext& context, bool /*changed*/) {
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 0, &clear.x);
   const glm::vec4 none(0.0f);
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 1, &none.x);
+  const glm::uvec4 noBins(0u);
+  glClearNamedFramebufferuiv(t.framebuffer.id(), GL_COLOR, 2, &noBins.x);
   const float one = 1.0f;
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_DEPTH, 0, &one);
   context.cameraFrame = frame_++;

@@ -58,7 +58,7 @@ std::size_t FrameMemory::total() const {
 }
 
 std::size_t renderTargetBytes(int width, int height) {
-  return screen(GL_RGBA32F, width, height) + screen(GL_RGBA8, width, height) +
+  return screen(GL_RGBA32F, width, height) + screen(GL_RGBA8, width, height) + screen(GL_RG8UI, width, height) +
          screen(GL_DEPTH_COMPONENT32F, width, height);
 }
 

@@ -9,11 +9,14 @@ void CameraTarget::ensure(int width, int height) {
   depth = gpu::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
   coverage = gpu::Texture::create2D(GL_RGBA8, width, height);
   coverage.setFilter(GL_NEAREST, GL_NEAREST);
+  coverageBins = gpu::Texture::create2D(GL_RG8UI, width, height);
+  coverageBins.setFilter(GL_NEAREST, GL_NEAREST);
   framebuffer = gpu::Framebuffer();
   framebuffer.attachColor(0, radiance);
   framebuffer.attachColor(1, coverage);
+  framebuffer.attachColor(2, coverageBins);
   framebuffer.attachDepth(depth);
-  framebuffer.setDrawBuffers(2);
+  framebuffer.setDrawBuffers(3);
   framebuffer.checkComplete("camera target");
 }
 

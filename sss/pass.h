@@ -85,13 +85,14 @@ class ModuleStore {
 };
 
 /// The camera's render target: linear radiance, Algorithm 1's coverage (r translucent, g seen by a
-/// map, b opaque) and depth.
+/// map, b opaque), sss.maps=auto's per-pixel coverage bins (shaders/surface.frag oCoverageBins) and
+/// depth.
 struct CameraTarget {
-  gpu::Texture radiance, coverage, depth;
+  gpu::Texture radiance, coverage, coverageBins, depth;
   gpu::Framebuffer framebuffer;
   /// (Re)allocates for width × height; keeps the textures when the size is unchanged.
   void ensure(int width, int height);
-  std::size_t bytes() const { return radiance.bytes() + coverage.bytes() + depth.bytes(); }
+  std::size_t bytes() const { return radiance.bytes() + coverage.bytes() + coverageBins.bytes() + depth.bytes(); }
 };
 
 /// Everything a pass's run() may use.

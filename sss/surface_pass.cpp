@@ -15,7 +15,8 @@ constexpr GLuint kFirstMethodUnit = 3;  // then each method's units, in the orde
 }  // namespace
 
 SurfacePass::SurfacePass(const gpu::ShaderLibrary& shaders)
-    : program_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}}}) {}
+    : program_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}}}),
+      coverageHistogram_(shaders, {{{GL_COMPUTE_SHADER, "maps/coverage_histogram.comp"}}}) {}
 
 void SurfacePass::setEnvironment(const Environment& environment) {
   const gpu::Image map = gpu::readHdr(environment.file);
@@ -71,6 +72,19 @@ void SurfacePass::render(const FrameContext& context) {
   glBindVertexArray(0);
   glUseProgram(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (context.countMapCoverage && shading == SurfaceShading::Algorithm1) countCoverage(context);
+}
+
+void SurfacePass::countCoverage(const FrameContext& context) {
+  constexpr GLuint kGroup = 16;  // shaders/maps/coverage_histogram.comp's local size
+  const gpu::Texture& bins = context.target.coverageBins;
+  coverageHistogram_.use();
+  bins.bind(0);
+  coverageHistogram_.set("uCoverageBins", 0);
+  glDispatchCompute((static_cast<GLuint>(bins.width()) + kGroup - 1) / kGroup,
+                    (static_cast<GLuint>(bins.height()) + kGroup - 1) / kGroup, 1);
+  glBindTextureUnit(0, 0);
+  glUseProgram(0);
 }
 
 }  // namespace tallow::sss

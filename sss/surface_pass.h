@@ -26,7 +26,12 @@ class SurfacePass {
   void render(const FrameContext& context);
 
  private:
+  /// sss.maps=auto: the camera's coverage histograms from the frame's coverage bins, one count per
+  /// visible pixel (shaders/maps/coverage_histogram.comp), into the buffer MapCoverageProbe bound.
+  void countCoverage(const FrameContext& context);
+
   gpu::Program program_;
+  gpu::Program coverageHistogram_;
   gpu::Texture environment_;
   float environmentRotationDeg_ = 0.0f, environmentScale_ = 1.0f;
 };

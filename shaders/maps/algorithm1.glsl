@@ -29,36 +29,28 @@ uniform sampler2DArrayShadow uMapDepth;
 struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // depthScale.x: depth units per metre
 layout(std430, binding = 5) readonly buffer MapViews { MapViewGpu mapViews[]; };
 
-// sss.maps=auto counts, per caller, which map first sees each point (maps/coverage_counts.glsl);
-// the buffer is bound only while uCoverageSection ≥ 0 (sss/maps/map_coverage_probe.h).
-#include "maps/coverage_counts.glsl"
-layout(std430, binding = 9) buffer MapCoverageCounts { uint coverageCounts[]; };
-uniform int uCoverageSection;  // 0: camera pixels, 1: VPLs, −1: no counting this frame
+// sss.maps=auto counts which map first sees each point (maps/coverage_counts.glsl). The VPL pass
+// counts here (uCoverageSection 1; −1: no counting this frame); the camera's pixels are counted
+// after the camera pass from what surface.frag writes per pixel (maps/coverage_histogram.comp), so
+// that hidden fragments, drawn before what hides them, do not count.
+#include "maps/coverage_count_buffer.glsl"
+uniform int uCoverageSection;
 
-void countInto(int histogram, int firstMap) {
-  int bin = firstMap >= 0 ? min(firstMap, COVERAGE_MAX_MAPS - 1) : COVERAGE_MAX_MAPS;
-  atomicAdd(coverageCounts[histogram * COVERAGE_HISTOGRAM_SIZE + bin], 1u);
-}
-
-void countMapCoverage(int firstMap, int firstFacingMap) {
-  if (uCoverageSection == 0) {
-    countInto(COVERAGE_CAMERA, firstMap);
-    countInto(COVERAGE_CAMERA_FACING, firstFacingMap);
-  } else if (uCoverageSection == 1) {
-    countInto(COVERAGE_VPLS, firstMap);
-  }
+void countMapCoverage(int firstMap) {
+  if (uCoverageSection == 1) countInto(COVERAGE_VPLS, firstMap);
 }
 
 // dpdx, dpdy: screen-space derivatives of x_o, taken by the caller in uniform control flow (they
 // are undefined inside this loop once some fragments skip a map); the mip level then follows the
 // pixel's footprint on each map. seenBy: Σ of the weights of the maps that see x_o; firstMap: the
-// first of them, firstFacingMap: the first within COVERAGE_MIN_COS of n_o (−1: none).
+// first of them, secondFacingMap: the second within COVERAGE_MIN_COS of n_o (−1: none).
 vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy, out int firstMap,
-                        out int firstFacingMap) {
+                        out int secondFacingMap) {
   vec3 colour = vec3(0.0);
   float n = 0.0;
   firstMap = -1;
-  firstFacingMap = -1;
+  secondFacingMap = -1;
+  int facing = 0;  // maps so far that see x_o within COVERAGE_MIN_COS of n_o
   for (int k = 0; k < uMapCount; ++k) {
     vec3 d = mapViews[k].direction.xyz;
     float cosTheta = clamp(dot(no, d), 0.0, 1.0);
@@ -90,7 +82,7 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     vec4 m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
     if (m.a <= 0.0) continue;
     if (firstMap < 0) firstMap = k;
-    if (firstFacingMap < 0 && cosTheta >= COVERAGE_MIN_COS) firstFacingMap = k;
+    if (cosTheta >= COVERAGE_MIN_COS && ++facing == 2) secondFacingMap = k;
     colour += v * m.rgb / m.a;
     n += v;
   }

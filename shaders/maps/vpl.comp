@@ -56,9 +56,9 @@ void main() {
       vec3 t2 = cross(n, t1);
       float side = sqrt(area);
       float seenBy = 0.0;
-      int firstMap = -1, firstFacingMap = -1;
-      vec3 b = scatteredRadiosity(x, n, side * t1, side * t2, seenBy, firstMap, firstFacingMap);
-      countMapCoverage(firstMap, firstFacingMap);
+      int firstMap = -1, secondFacingMap = -1;
+      vec3 b = scatteredRadiosity(x, n, side * t1, side * t2, seenBy, firstMap, secondFacingMap);
+      countMapCoverage(firstMap);
       rec.position = vec4(x, uSlotEta[slot]);
       rec.normal = vec4(n, area);
       rec.radiance = vec4(b / VPL_PI, directions[v].w);  // w: the shadow cluster

@@ -4,15 +4,17 @@
 // cover small details", and §5: 16 for simple shapes, 31 for the dragon).
 //
 // The maps' directions are a Halton sequence, so the maps of a smaller K are the first maps of a
-// larger one. Algorithm 1 records, for every camera pixel of a translucent object and for every VPL,
-// the first map that sees it, and for the pixels also the first map that sees them within 60° of
-// their normal (shaders/maps/coverage_counts.glsl). A histogram of those indices says at once how
-// many points every K' ≤ K would leave unseen: a hole (Algorithm 1 gives B = 0: a dark spot, a dark
-// VPL), or only grazing maps (B blurred over 1/cos θ of surface: on the marble bunny, the 8th map
-// is the first to face 412 of its 2500 pixels, and dropping it takes the converged error from 7.4%
-// to 10.4%; docs/radiosity-maps.md). The renderer reads the counts back without waiting (a fence,
-// a frame or more later: sss/maps/map_coverage_probe.h) and MapCountChooser picks the K of the next
-// frames, per histogram h with its tolerance τ_h (holes: kAutoMapsHoleTolerance, grazing:
+// larger one. The GPU records, for every visible camera pixel of a translucent object and for every
+// VPL, the first map that sees it, and for the pixels also the second map that sees them within 60°
+// of their normal (shaders/maps/coverage_counts.glsl, coverage_histogram.comp). A histogram of those
+// indices says at once how many points every K' ≤ K would leave unseen: a hole (Algorithm 1 gives
+// B = 0: a dark spot, a dark VPL), or fewer than two facing maps (B blurred over 1/cos θ of surface:
+// on the marble bunny, the 8th map is the first to face 412 of its 2500 pixels, and dropping it
+// takes the converged error from 7.4% to 10.4%; with one facing map a pixel takes that map's blur
+// and bias nearly alone: the animated candle's lower-wall silhouette read 10% bright at K = 8, a
+// firefly the reference lacks; docs/radiosity-maps.md). The renderer reads the counts back without
+// waiting (a fence, a frame or more later: sss/maps/map_coverage_probe.h) and MapCountChooser picks
+// the K of the next frames, per histogram h with its tolerance τ_h (holes: kAutoMapsHoleTolerance, grazing:
 // kAutoMapsGrazingTolerance):
 //   - shrink to the smallest K' that leaves at most τ_h more of h's points unseen than the fewest
 //     measured so far at this K or a larger one (in every histogram). Against that floor, not the
@@ -36,7 +38,8 @@ namespace tallow::sss {
 
 constexpr int kAutoMapsMax = glsl::COVERAGE_MAX_MAPS;
 constexpr int kAutoMapsFirst = 16;  ///< K of the first frames, before any coverage is known (the paper's §5)
-/// The share of the pixels or VPLs that may be left with no map (holes), and with no map facing them.
+/// The share of the pixels or VPLs that may be left with no map (holes), and with fewer than two maps
+/// facing them.
 constexpr double kAutoMapsHoleTolerance = 1e-3;
 constexpr double kAutoMapsGrazingTolerance = 0.02;
 
@@ -54,7 +57,7 @@ struct CoverageHistogram {
 struct MapCoverageCounts {
   int maps = 0;
   CoverageHistogram camera;        ///< the pixels, by the first map that sees them
-  CoverageHistogram cameraFacing;  ///< the pixels, by the first map within 60° of their normal
+  CoverageHistogram cameraFacing;  ///< the pixels, by the second map within 60° of their normal
   std::optional<CoverageHistogram> vpls;
 };
 

@@ -152,7 +152,7 @@ void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& conte
   const GLuint mapsUnit = firstUnit, depthUnit = firstUnit + 1, vplShadowUnit = firstUnit + 2;
   const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
   if (active && maps && shading(context.state) == SurfaceShading::Algorithm1) {
-    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true, context.countMapCoverage ? 0 : -1);
+    maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true, false);
   } else {
     p.set("uCoverageSection", -1);
     p.set("uMaps", static_cast<int>(mapsUnit));

@@ -407,7 +407,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
 }
 
 void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings& settings, GLuint mapsUnit,
-                                          GLuint depthUnit, bool pixelLookups, int coverageSection) const {
+                                          GLuint depthUnit, bool pixelLookups, bool countVplCoverage) const {
   constexpr GLuint kMapViewsBinding = 5;  // shaders/maps/algorithm1.glsl
   // ε_bias and ε_comb are relative to the translucent objects' bounding radius (sss.bias, sss.comb).
   const float radius = sphere_.radius;
@@ -418,7 +418,7 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   p.set("uEpsBias", settings.sss.bias * radius);
   p.set("uEpsComb", settings.sss.comb * radius);
   p.set("uViewWeight", settings.sss.viewWeight);
-  p.set("uCoverageSection", coverageSection);
+  p.set("uCoverageSection", countVplCoverage ? 1 : -1);
   p.set("uMaps", static_cast<int>(mapsUnit));
   p.set("uMapDepth", static_cast<int>(depthUnit));
   maps_.bind(mapsUnit);

@@ -141,10 +141,11 @@ class RadiosityMaps {
   /// for a program that includes it: the camera pass and the VPL pass. `pixelLookups`: the caller
   /// passes a pixel's footprint (the camera pass), which is then filtered over at most half the
   /// shortest 1/σ_tr (maxMapFootprint); the VPL pass passes a VPL's patch and averages over all of it.
-  /// `coverageSection`: where sss.maps=auto's counts go (maps/coverage_counts.glsl: 0 camera, 1 VPLs;
-  /// −1: the frame counts nothing, MapCoverageProbe bound no buffer).
+  /// `countVplCoverage`: the VPL pass counts sss.maps=auto's VPL histogram (maps/coverage_counts.glsl;
+  /// only when MapCoverageProbe bound a buffer). The camera's pixels are counted by SurfacePass after
+  /// the camera pass, from the pixels that stay visible.
   void setAlgorithm1Uniforms(gpu::Program& program, const RenderSettings& settings, GLuint mapsUnit,
-                             GLuint depthUnit, bool pixelLookups, int coverageSection) const;
+                             GLuint depthUnit, bool pixelLookups, bool countVplCoverage) const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
   const std::vector<int>& slots() const { return slots_; }
   /// The directional light G-buffers (tests): normals, and per directional light (scene order of

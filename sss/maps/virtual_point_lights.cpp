@@ -228,7 +228,7 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   // Step 2: the VPLs.
   gpu::Program& p = compute_;
   p.use();
-  maps.setAlgorithm1Uniforms(p, settings, kMapsUnit, kMapDepthUnit, false, countCoverage ? 1 : -1);
+  maps.setAlgorithm1Uniforms(p, settings, kMapsUnit, kMapDepthUnit, false, countCoverage);
   std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (maps.slots()[i] >= 0) eta[static_cast<std::size_t>(maps.slots()[i])] = scene.objects[i].material.eta;
