@@ -192,12 +192,8 @@ TEST_F(BlobGpuTest, VertexNormalsAreTheAnalyticGradientAtTheVertices) {
 
 constexpr int kRes = 48;
 
-/// The settings of a preset at a small size with a coarse lattice (as field_scene_gltest).
-std::vector<std::string> smallFieldSets(const std::string& placement = "qef") {
-  return {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes), "sss.maps=6",
-          "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
-          "field.placement=" + placement};
-}
+/// The settings of a preset at a small size with a coarse lattice.
+std::vector<std::string> smallFieldSets(const std::string& placement = "qef") { return test::smallFieldSets(kRes, placement); }
 
 /// Renders the frame at t, expecting no GL error; returns its timings.
 sss::FrameTimings renderChecked(test::PresetSession& s, double t) {

@@ -196,7 +196,7 @@ TEST_P(CandleGpuRendererPlacement, CandleFramesAreFilledOnTheGpuAndMatchTheCpuSa
   test::PresetSession s("candle", {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes),
                                    "sss.maps=4", "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64",
                                    "vpl.count=8", "field.placement=" + placement});
-  gpu::ShaderLibrary shaders;
+  const gpu::ShaderLibrary& shaders = s.shaders();
   int frames = 0;
   for (double t : {5.0, 12.0, 17.3, 20.0}) {
     s.render(t);

@@ -191,12 +191,8 @@ std::string meltingPreset(const test::TempDir& dir) {
       .string();
 }
 
-/// The settings of that preset at a small size with a coarse lattice (as blob_gpu_gltest).
-std::vector<std::string> smallFieldSets(const std::string& placement) {
-  return {"render.width=64", "render.height=48", "field.res=" + std::to_string(kRes), "sss.maps=6",
-          "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
-          "field.placement=" + placement};
-}
+/// The settings of that preset at a small size with a coarse lattice.
+std::vector<std::string> smallFieldSets(const std::string& placement) { return test::smallFieldSets(kRes, placement); }
 
 /// Renders the frame at t, expecting no GL error.
 void renderChecked(test::PresetSession& s, double t) {

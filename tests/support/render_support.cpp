@@ -51,6 +51,12 @@ std::string testScene(const std::string& name) {
   return std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/" + name + ".json";
 }
 
+std::vector<std::string> smallFieldSets(int res, const std::string& placement) {
+  return {"render.width=64", "render.height=48", "field.res=" + std::to_string(res), "sss.maps=6",
+          "sss.samples=4", "sss.map_size=64", "sss.light_map_size=64", "sss.frames=1",
+          "field.placement=" + placement};
+}
+
 double centreMean(const gpu::Image& image, int band) {
   double sum = 0.0;
   int n = 0;

@@ -56,4 +56,8 @@ double centreMean(const gpu::Image& image, int band);
 /// Path of a test scene in tests/data/.
 std::string testScene(const std::string& name);
 
+/// A field preset's settings for the GPU field tests: 64x48, a coarse lattice of `res` cells, six
+/// small maps and one frame, with the given vertex placement (field.placement).
+std::vector<std::string> smallFieldSets(int res, const std::string& placement = "qef");
+
 }  // namespace tallow::test
