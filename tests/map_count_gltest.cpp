@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sss/maps/map_count.h"
+#include "sss/maps/radiosity_estimator.h"
 #include "sss/maps/radiosity_maps.h"
 #include "support/render_support.h"
 
@@ -83,6 +84,26 @@ TEST(MapCountRenderer, TheBunnySettlesOnMapsThatLeaveNoHoles) {
   int fewest = 16;
   while (fewest > 1 && unseen[static_cast<std::size_t>(fewest) - 1] <= allowed - slack) --fewest;
   EXPECT_GE(k, fewest);
+}
+
+// The facing histogram on a case whose answer is known without the GPU: the slab seen straight down
+// shows only its top face (n = +y), so every pixel's second facing map is the second of the Halton
+// directions (sss::haltonDirection, the maps' own) within 60° of +y, and all of them land in its bin.
+TEST(MapCountRenderer, TheSlabsPixelsAreBinnedByTheSecondHaltonDirectionWithin60DegreesOfUp) {
+  test::PresetSession session("slab", {"render.width=32", "render.height=32", "sss.maps=auto", "sss.samples=1",
+                                       "sss.map_size=128", "sss.light_map_size=512"});
+  for (int frame = 0; frame < 4; ++frame) session.render(0.0);
+  const std::optional<sss::MapCoverageCounts>& counts = session.renderer().lastMapCoverage();
+  ASSERT_TRUE(counts.has_value());
+  const int k = counts->maps;
+  int facing = 0, expected = -1;
+  for (int i = 0; i < k && expected < 0; ++i)
+    if (sss::haltonDirection<double>(static_cast<std::uint32_t>(i)).y >= 0.5 && ++facing == 2) expected = i;
+  ASSERT_GE(expected, 0) << "K " << k << " has fewer than two maps within 60 degrees of up";
+  const sss::CoverageHistogram& h = counts->cameraFacing;
+  const std::uint64_t pixels = h.total(k);
+  ASSERT_GT(pixels, 500u);
+  EXPECT_EQ(h.first[static_cast<std::size_t>(expected)], pixels) << "K " << k << ", expected bin " << expected;
 }
 
 TEST(MapCountRenderer, AFixedKIsNeverChanged) {
