@@ -238,6 +238,22 @@ void Framebuffer::checkComplete(const std::string& what) const {
   throw std::runtime_error(what + ": framebuffer incomplete (" + text + ")");
 }
 
+Framebuffer boundGBuffer(const Texture& position, const Texture& normal, const Texture& depth, float clearDepth,
+                         const std::string& what) {
+  Framebuffer fb;
+  fb.attachColor(0, position);
+  fb.attachColor(1, normal);
+  fb.attachDepth(depth);
+  fb.setDrawBuffers(2);
+  fb.checkComplete(what);
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
+  fb.bind();
+  return fb;
+}
+
 VertexArray::VertexArray() {
   GLuint id = 0;
   glCreateVertexArrays(1, &id);

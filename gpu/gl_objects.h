@@ -128,6 +128,12 @@ class Framebuffer {
   detail::GlName<detail::FramebufferTraits> name_;
 };
 
+/// A G-buffer's target (the light, map and VPL-cube G-buffers): `position` and `normal` as colour
+/// attachments 0 and 1 and `depth`, all layers; checked complete (`what` names it in the error), both
+/// colours cleared to 0 and the depth to `clearDepth`, and bound for drawing.
+Framebuffer boundGBuffer(const Texture& position, const Texture& normal, const Texture& depth, float clearDepth,
+                         const std::string& what);
+
 class VertexArray {
  public:
   VertexArray();

@@ -302,8 +302,6 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   LayeredState state;
   gbufferProgram_.use();
   glViewport(0, 0, size, size);
-  const float clearPosition[4] = {0, 0, 0, 0};  // tag 0: nothing
-  const float one = 1.0f;
   const auto drawAll = [&](const std::vector<glm::mat4>& layers) {
     gbufferViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, gbufferViews_.id());
@@ -319,16 +317,7 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   const auto renderKind = [&](const gpu::Texture& position, const gpu::Texture& normal, const gpu::Texture& depth,
                               const std::vector<glm::mat4>& layers, const char* what) {
     if (layers.empty()) return;
-    gpu::Framebuffer fb;
-    fb.attachColor(0, position);
-    fb.attachColor(1, normal);
-    fb.attachDepth(depth);
-    fb.setDrawBuffers(2);
-    fb.checkComplete(what);
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, clearPosition);
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, clearPosition);
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
-    fb.bind();
+    const gpu::Framebuffer fb = gpu::boundGBuffer(position, normal, depth, 1.0f, what);  // position tag 0: nothing
     drawAll(layers);
   };
   renderKind(dirPosition_, dirNormal_, dirDepth_, dirLayers, "directional light G-buffer");
@@ -483,16 +472,8 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
       previousPosition_ = gpu::Texture();
       previousNormal_ = gpu::Texture();
     }
-    gpu::Framebuffer fb;
-    fb.attachColor(0, mapPosition_);
-    fb.attachColor(1, mapNormal_);
-    fb.attachDepth(mapDepth_);
-    fb.setDrawBuffers(2);
-    fb.checkComplete("scattered radiosity maps' G-buffer");
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
-    fb.bind();
+    const gpu::Framebuffer fb =
+        gpu::boundGBuffer(mapPosition_, mapNormal_, mapDepth_, 1.0f, "scattered radiosity maps' G-buffer");
     mapGBufferProgram_.use();
     drawTranslucent(mapGBufferProgram_);
   };

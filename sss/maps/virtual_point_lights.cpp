@@ -208,18 +208,8 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   faceViews_ = gpu::Buffer(sizeof(faces), faces.data());
   {
     CubePassState state;
-    gpu::Framebuffer fb;
-    fb.attachColor(0, cubePosition_);
-    fb.attachColor(1, cubeNormal_);
-    fb.attachDepth(cubeDepth_);
-    fb.setDrawBuffers(2);
-    fb.checkComplete("VPL outermost-surface cube");
-    const float zero[4] = {0, 0, 0, 0};
-    const float near = 0.0f;  // cleared to the near plane: any surface is farther
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
-    glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &near);
-    fb.bind();
+    // Depth cleared to the near plane: any surface is farther.
+    const gpu::Framebuffer fb = gpu::boundGBuffer(cubePosition_, cubeNormal_, cubeDepth_, 0.0f, "VPL outermost-surface cube");
     glViewport(0, 0, cube, cube);
     cubeProgram_.use();
     drawTranslucentLayered(cubeProgram_, geometry, maps.slots(), faceViews_, 6);
