@@ -2,9 +2,10 @@
 // sss.maps=auto's camera histograms (maps/coverage_counts.glsl) from the camera pass's per-pixel
 // record (surface.frag's oCoverageBins: each bin + 1, 0 where Algorithm 1 did not shade): one count
 // per visible pixel. Counting in the fragment shader instead counted every fragment that passed the
-// depth test when drawn, hidden ones too (the wax inside the animated candle's holder, drawn before
-// the holder: 5900 counts for 3200 visible pixels), and K followed what no one sees. Each workgroup
-// sums into shared memory first, then adds its non-zero bins to the buffer.
+// depth test when drawn, hidden ones too (with culling off, the candle's far wall and the inside of
+// its cup wherever they were drawn before the near wall: 5900 counts for 3200 visible pixels of the
+// animated candle), and K followed what no one sees. Each workgroup sums into shared memory first,
+// then adds its non-zero bins to the buffer.
 #include "maps/coverage_count_buffer.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
