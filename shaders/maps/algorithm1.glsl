@@ -30,14 +30,14 @@ struct MapViewGpu { mat4 toTexture; vec4 direction; vec4 depthScale; };  // dept
 layout(std430, binding = 5) readonly buffer MapViews { MapViewGpu mapViews[]; };
 
 // sss.maps=auto counts which map first sees each point (maps/coverage_counts.glsl). The VPL pass
-// counts here (uCoverageSection 1; −1: no counting this frame); the camera's pixels are counted
+// counts here (uCountVplCoverage 1; 0: no counting this frame); the camera's pixels are counted
 // after the camera pass from what surface.frag writes per pixel (maps/coverage_histogram.comp), so
 // that hidden fragments, drawn before what hides them, do not count.
 #include "maps/coverage_count_buffer.glsl"
-uniform int uCoverageSection;
+uniform int uCountVplCoverage;
 
-void countMapCoverage(int firstMap) {
-  if (uCoverageSection == 1) countInto(COVERAGE_VPLS, firstMap);
+void countVplCoverage(int firstMap) {
+  if (uCountVplCoverage != 0) countInto(COVERAGE_VPLS, firstMap);
 }
 
 // dpdx, dpdy: screen-space derivatives of x_o, taken by the caller in uniform control flow (they

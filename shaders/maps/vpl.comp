@@ -58,7 +58,7 @@ void main() {
       float seenBy = 0.0;
       int firstMap = -1, secondFacingMap = -1;
       vec3 b = scatteredRadiosity(x, n, side * t1, side * t2, seenBy, firstMap, secondFacingMap);
-      countMapCoverage(firstMap);
+      countVplCoverage(firstMap);
       rec.position = vec4(x, uSlotEta[slot]);
       rec.normal = vec4(n, area);
       rec.radiance = vec4(b / VPL_PI, directions[v].w);  // w: the shadow cluster

@@ -154,7 +154,6 @@ void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& conte
   if (active && maps && shading(context.state) == SurfaceShading::Algorithm1) {
     maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true, false);
   } else {
-    p.set("uCoverageSection", -1);
     p.set("uMaps", static_cast<int>(mapsUnit));
     p.set("uMapDepth", static_cast<int>(depthUnit));
     p.set("uMapCount", 0);

@@ -407,7 +407,7 @@ void RadiosityMaps::setAlgorithm1Uniforms(gpu::Program& p, const RenderSettings&
   p.set("uEpsBias", settings.sss.bias * radius);
   p.set("uEpsComb", settings.sss.comb * radius);
   p.set("uViewWeight", settings.sss.viewWeight);
-  p.set("uCoverageSection", countVplCoverage ? 1 : -1);
+  p.set("uCountVplCoverage", countVplCoverage ? 1 : 0);
   p.set("uMaps", static_cast<int>(mapsUnit));
   p.set("uMapDepth", static_cast<int>(depthUnit));
   maps_.bind(mapsUnit);
