@@ -23,12 +23,15 @@ from results_sections import fmt, pct  # noqa: E402
 HEADING = "## The maps while the geometry deforms (issue 17, point 3)"
 SIZE = "160x90"
 FRAMES = 8
-# (sss.history, sss.history_move, sss.samples): the paper's restart, then the history's length and
-# its tolerance at the default N = 8; then both at N = 1, where one frame alone is noisy.
-VARIANTS = ((0, 0.5, 8), (4, 0.5, 8), (8, 0.25, 8), (8, 0.5, 8), (8, 1.0, 8), (16, 0.5, 8),
-            (0, 0.5, 1), (8, 0.25, 1), (8, 0.5, 1))
+# (sss.history, sss.history_move, sss.samples, sss.history_rescale): the paper's restart; the history
+# kept as it was (rescale 0, the first version, which lagged); the defaults (8 frames rescaled on one
+# diffusion length); the rescale's footprint and the history's length about the defaults; then
+# restart, unrescaled and default at N = 1, where one frame alone is noisy.
+DEFAULT = (8, 0.5, 8, 1.0)
+VARIANTS = ((0, 0.5, 8, 0.0), (8, 0.5, 8, 0.0), DEFAULT, (8, 0.5, 8, 0.5), (8, 0.5, 8, 2.0), (4, 0.5, 8, 1.0),
+            (16, 0.5, 8, 1.0), (0, 0.5, 1, 0.0), (8, 0.5, 1, 0.0), (8, 0.5, 1, 1.0))
 # At an interactive rate the surface and the light move less per frame, so a history lags less.
-FAST_VARIANTS = ((0, 0.5, 8), (8, 0.5, 8), (0, 0.5, 1), (4, 0.5, 1), (8, 0.5, 1))
+FAST_VARIANTS = ((0, 0.5, 8, 0.0), (8, 0.5, 8, 0.0), DEFAULT, (0, 0.5, 1, 0.0), (8, 0.5, 1, 1.0))
 # preset, first frame's time [s], frames per second (every frame at a new time, k frames), variants.
 ANIMATIONS = (("blob", 2.0, 8.0, VARIANTS), ("candle", 12.0, 4.0, VARIANTS),
               ("blob", 2.0, 30.0, FAST_VARIANTS), ("candle", 12.0, 30.0, FAST_VARIANTS))
@@ -42,8 +45,10 @@ def times(t0, fps, frames):
     return [t0 + i / fps for i in range(frames)]
 
 
-def run_dir(work, preset, fps, history, move, samples):
+def run_dir(work, preset, fps, history, move, samples, rescale):
     name = "%s_%gfps_history_%d_move_%g" % (preset, fps, history, move)
+    if history > 0:
+        name += "_rescale_%g" % rescale
     return os.path.join(work, name if samples == 8 else name + "_n%d" % samples)
 
 
@@ -67,11 +72,12 @@ def run(work, quick):
         ref = reference_path(work, preset, fps)
         results_sections.run_once([binary, "reference", "--preset", preset, "--size", size, "--time", repr(tk),
               *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref, quiet=True)
-        for history, move, samples in (variants[:2] if quick else variants):
-            out = run_dir(work, preset, fps, history, move, samples)
+        for history, move, samples, rescale in (variants[:3] if quick else variants):
+            out = run_dir(work, preset, fps, history, move, samples, rescale)
             results_sections.run_once([binary, "capture", "--preset", preset, "--size", size, "--time", repr(t0), "--fps", repr(fps),
                   "--frames", str(frames), "--reference", ref, "--set", "sss.history=%d" % history,
                   "--set", "sss.history_move=%g" % move, "--set", "sss.samples=%d" % samples,
+                  "--set", "sss.history_rescale=%g" % rescale,
                   "--set", "render.flame=false", *FIXED, "--out", out],
                  os.path.join(out, "stats.json"), quiet=True)
 
@@ -111,21 +117,24 @@ def reference_info(path):
 
 def verdict(compared):
     """The verdict lines over (history row, its restart row) pairs: how often a kept history wins,
-    overall and by frame rate and N, and whether the default (restart) should change."""
+    by sss.history_rescale, and whether the defaults (DEFAULT) win at N = 8 in most animations."""
     if not compared:
         return []
     wins = lambda pairs: sum(1 for r, b in pairs if r["rel_rmse"] < b["rel_rmse"])
-    better = wins(compared)
-    groups = sorted({(r["fps"], r["samples"]) for r, _ in compared})
     parts = []
-    for fps, samples in groups:
-        pairs = [(r, b) for r, b in compared if r["fps"] == fps and r["samples"] == samples]
-        parts.append("%d of %d at %g fps and N = %d" % (wins(pairs), len(pairs), fps, samples))
-    default_pairs = [(r, b) for r, b in compared if r["samples"] == 8]
+    for rescale in sorted({r["rescale"] for r, _ in compared}):
+        pairs = [(r, b) for r, b in compared if r["rescale"] == rescale]
+        parts.append("with `sss.history_rescale` = %g in %d of %d" % (rescale, wins(pairs), len(pairs)))
+    default_pairs = [(r, b) for r, b in compared
+                     if (r["history"], r["move"], r["samples"], r["rescale"]) == DEFAULT]
     keep = default_pairs and wins(default_pairs) * 2 > len(default_pairs)
-    return ["", "Verdict: a kept history has the lower error at frame k in %d of %d cases (%s); the default `sss.history`"
-            " is %s." % (better, len(compared), "; ".join(parts),
-                         "worth raising" if keep else "0 (restart), since at the default N = 8 the history mostly loses")]
+    ratios = ", ".join("%s at %g fps %s against %s" % (r["preset"], r["fps"], pct(r["rel_rmse"]), pct(b["rel_rmse"]))
+                       for r, b in default_pairs)
+    return ["", "Verdict: a kept history has the lower error at frame k %s. The defaults (`sss.history` = %d, "
+            "`sss.history_rescale` = %g, N = %d) against restarting: %s; they %s." % (
+                "; ".join(parts), DEFAULT[0], DEFAULT[3], DEFAULT[2], ratios,
+                "win in %d of %d animations, so the maps are not restarted by default" % (wins(default_pairs), len(default_pairs))
+                if keep else "do not win in most animations: the default should be a restart (`sss.history` = 0)")]
 
 
 def section(work):
@@ -140,8 +149,8 @@ def section(work):
     runs = []
     for preset, t0, fps, variants in ANIMATIONS:
         ref = reference_path(work, preset, fps)
-        for history, move, samples in variants:
-            path = os.path.join(run_dir(work, preset, fps, history, move, samples), "stats.json")
+        for history, move, samples, rescale in variants:
+            path = os.path.join(run_dir(work, preset, fps, history, move, samples, rescale), "stats.json")
             if not os.path.exists(path):
                 continue
             with open(path) as f:
@@ -152,7 +161,8 @@ def section(work):
             last = frames[-1]
             err = last.get("reference_error") or {}
             rows.append({
-                "preset": preset, "history": history, "move": move, "samples": samples, "frames": len(frames), "t0": frames[0]["time_s"],
+                "preset": preset, "history": history, "move": move, "samples": samples, "rescale": rescale,
+                "frames": len(frames), "t0": frames[0]["time_s"],
                 "tk": last["time_s"], "fps": fps, "rel_rmse": err.get("rel_rmse"), "mean": err.get("mean_ratio"),
                 "upper": err.get("upper_mean_ratio"), "lower": err.get("lower_mean_ratio"),
                 "pixels": err.get("pixels"),
@@ -174,19 +184,21 @@ def section(work):
     add("`tallow reference` at t_k (object pixels the reference marks; ε its relative standard error). `history 0`")
     add("is the paper: the maps restart at every change, so each frame is a first frame. Otherwise each map texel")
     add("keeps at most `sss.history` frames where its surface point and normal still hold")
-    add("([radiosity-maps.md](radiosity-maps.md#history-while-the-geometry-moves-ssshistory-issue-17)). Flicker:")
+    add("([radiosity-maps.md](radiosity-maps.md#history-while-the-geometry-moves-ssshistory-issue-17)), and with")
+    add("`sss.history_rescale` > 0 what it keeps is rescaled band by band to this frame's estimate on a footprint of")
+    add("that many diffusion lengths (at least 8×8 texels), so that it follows a light that moves. Flicker:")
     add("the median over frames 2…k of the translucent pixels' and the receivers' mean absolute frame-to-frame")
     add("change relative to their mean (part of it is the motion itself, the same for every row of a preset).")
     add("K is fixed at 16 (`sss.maps=16`): with `auto`, every change of the chosen K restarts the maps, which on")
     add("these moving scenes cut the history short every few frames. F at k: the frames the maps held at frame k.")
     add("")
-    add("| preset | size | fps | t₀ → t_k [s] | k | N | sss.history | sss.history_move | F at k | frame k rel. RMSE | frame 1 rel. RMSE | mean ratio (upper / lower) | translucent change | receiver change | wall [ms] | reference |")
-    add("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---|")
+    add("| preset | size | fps | t₀ → t_k [s] | k | N | sss.history | sss.history_move | sss.history_rescale | F at k | frame k rel. RMSE | frame 1 rel. RMSE | mean ratio (upper / lower) | translucent change | receiver change | wall [ms] | reference |")
+    add("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---|")
     for r in rows:
         ref = r["ref"]
-        add("| %s | %d×%d | %g | %.3g → %.3g | %d | %d | %d | %s | %s | %s | %s | %s (%s / %s) | %s | %s | %s | %s spp, ε %s |" % (
+        add("| %s | %d×%d | %g | %.3g → %.3g | %d | %d | %d | %s | %s | %s | %s | %s | %s (%s / %s) | %s | %s | %s | %s spp, ε %s |" % (
             r["preset"], r["size"][0], r["size"][1], r["fps"], r["t0"], r["tk"], r["frames"], r["samples"], r["history"],
-            "—" if r["history"] == 0 else "%g" % r["move"],
+            "—" if r["history"] == 0 else "%g" % r["move"], "—" if r["history"] == 0 else "%g" % r["rescale"],
             r["maps_frames"] if r["maps_frames"] is not None else "—", pct(r["rel_rmse"]), pct(r["first_rel_rmse"]),
             fmt(r["mean"]), fmt(r["upper"]), fmt(r["lower"]), pct(r["translucent_change"]), pct(r["receiver_change"]),
             fmt(r["wall"], 0), ref.get("tallow.spp", "?"), eps(ref.get("tallow.rel_error"))))
@@ -194,9 +206,9 @@ def section(work):
     compared = [(r, restart_of(rows, r)) for r in rows if r["history"] > 0]
     compared = [(r, b) for r, b in compared if b and r["rel_rmse"] and b["rel_rmse"]]
     for r, b in compared:
-        add("- %s at %g fps, N = %d, sss.history = %d, sss.history_move = %g: frame k's relative RMSE %s against %s"
+        add("- %s at %g fps, N = %d, sss.history = %d, sss.history_rescale = %g: frame k's relative RMSE %s against %s"
             " restarting (restart / history = %s); translucent change %s against %s." % (
-                r["preset"], r["fps"], r["samples"], r["history"], r["move"], pct(r["rel_rmse"]), pct(b["rel_rmse"]),
+                r["preset"], r["fps"], r["samples"], r["history"], r["rescale"], pct(r["rel_rmse"]), pct(b["rel_rmse"]),
                 fmt(b["rel_rmse"] / r["rel_rmse"], 2), pct(r["translucent_change"]), pct(b["translucent_change"])))
     lines.extend(verdict(compared))
     add("")

@@ -62,6 +62,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("sss.frames", [](S s) { return s.sss.frames; }));
     t.push_back(setting("sss.history", [](S s) { return s.sss.history; }));
     t.push_back(setting("sss.history_move", [](S s) { return s.sss.historyMove; }));
+    t.push_back(setting("sss.history_rescale", [](S s) { return s.sss.historyRescale; }));
     t.push_back(setting("sss.light_map_auto", [](S s) { return s.sss.lightMapAuto; }));
     t.push_back(setting("sss.projected_area", [](S s) { return s.sss.projectedArea; }));
     t.push_back(setting("sss.texel_plane", [](S s) { return s.sss.texelPlane; }));

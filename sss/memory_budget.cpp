@@ -88,9 +88,10 @@ std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history)
   const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(size)));
   std::size_t bytes = layers2D(GL_RGBA32F, size, k, levels) + layers2D(GL_DEPTH_COMPONENT32F, size, k);
   // The maps' G-buffer (position, normal): the compute gather's input and the history's; the
-  // history keeps the last frame's as well.
+  // history keeps the last frame's as well,
   if (computeGather || history) bytes += 2 * layers2D(GL_RGBA32F, size, k);
-  if (history) bytes += 2 * layers2D(GL_RGBA32F, size, k);
+  // and, on a reuse, the kept history and this frame's mean beside it, both mipmapped.
+  if (history) bytes += 2 * layers2D(GL_RGBA32F, size, k) + 2 * layers2D(GL_RGBA32F, size, k, levels);
   return bytes;
 }
 

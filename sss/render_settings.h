@@ -34,12 +34,16 @@ struct SssSettings {
   int frames = 0;             ///< sss.frames: accumulated frames after which the maps are converged
   /// sss.history: when the geometry or the lights move, each map texel whose surface point and
   /// normal still hold keeps at most this many frames of its accumulated estimate (the rest is
-  /// reset); 0 restarts the maps (the paper, and the default: measured better at N = 8, see
-  /// docs/RESULTS.md). shaders/maps/history.glsl, issue 17.
-  int history = 0;
+  /// reset), rescaled to follow the light (sss.history_rescale); 0 restarts the maps (the paper).
+  /// shaders/maps/history.glsl, issue 17; measured in docs/RESULTS.md.
+  int history = 8;
   /// sss.history_move: how far a texel's surface point may move for it to keep its history, in
   /// units of the shortest diffusion length 1/σ_tr of the translucent materials.
   float historyMove = 0.5f;
+  /// sss.history_rescale: the footprint, in shortest diffusion lengths, over which a kept history
+  /// is rescaled to this frame's estimate band by band, so that it follows a light that moves
+  /// while the surface holds (shaders/maps/history.glsl, sssHistoryRescale); 0: kept as it was.
+  float historyRescale = 1.0f;
   bool stereographic = true;  ///< sss.stereographic: Eqs. 13–14 for point lights inside objects
   /// sss.point_share: the share of point-light samples drawn from the stereographic density about
   /// the light instead of Eq. 12 (shaders/maps/estimator.glsl, issue 17); 0: Eq. 12 alone (the

@@ -82,5 +82,60 @@ TEST(MapHistory, ToleranceIsInUnitsOfTheShortestDiffusionLength) {
   EXPECT_NEAR(t.minCos, std::cos(25.0 * 3.14159265358979 / 180.0), 1e-6);
 }
 
+using sss::history_glsl::sssHistoryRescale;
+
+TEST(MapHistoryRescale, AClearChangeIsFollowedBandByBand) {
+  // No noise (mean squared difference 0): the factor is each band's ratio of the coarse means.
+  const glm::vec4 r = sssHistoryRescale(glm::vec3(2.0f, 1.5f, 0.6f), glm::vec3(1.0f, 1.0f, 0.5f), 0.0f, 256.0f, 4.0f);
+  EXPECT_FLOAT_EQ(r.x, 2.0f);
+  EXPECT_FLOAT_EQ(r.y, 1.5f);
+  EXPECT_FLOAT_EQ(r.z, 1.2f);
+  EXPECT_EQ(r.w, 1.0f) << "kept";
+}
+
+TEST(MapHistoryRescale, AChangeWithinTheNoiseIsShrunkTowardsOne) {
+  // History means 1 in every band, this frame's 1.1: Δ = 0.1. Per texel the frames differ by a
+  // mean square of 2.56 over 256 texels: σ² = 2.56 / 256 = 0.01 = Δ², so c = 1/2 and the factor is
+  // 1 + 0.1 / 2.
+  const glm::vec3 h(1.0f), f(1.1f);
+  glm::vec4 r = sssHistoryRescale(f, h, 2.56f, 256.0f, 4.0f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r[c], 1.05f, 1e-5f) << c;
+  // Ten times the noise: c = 0.01 / (0.01 + 0.1); a hundredth of it: nearly the whole ratio.
+  r = sssHistoryRescale(f, h, 25.6f, 256.0f, 4.0f);
+  EXPECT_NEAR(r.x, 1.0f + 0.1f * (0.01f / 0.11f), 1e-5f);
+  r = sssHistoryRescale(f, h, 0.0256f, 256.0f, 4.0f);
+  EXPECT_NEAR(r.x, 1.0f + 0.1f * (0.01f / 0.0101f), 1e-5f);
+  // The same variance from a footprint of 4× the texels and 4× the mean square.
+  EXPECT_NEAR(sssHistoryRescale(f, h, 10.24f, 1024.0f, 4.0f).x, 1.05f, 1e-5f);
+  // No change at all: exactly 1, whatever the noise.
+  r = sssHistoryRescale(h, h, 2.56f, 256.0f, 4.0f);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(r[c], 1.0f) << c;
+}
+
+TEST(MapHistoryRescale, AChangeBeyondTheLimitOrLightInOneMeanOnlyResetsTheTexel) {
+  const glm::vec3 h(1.0f);
+  EXPECT_EQ(sssHistoryRescale(glm::vec3(4.0f), h, 0.0f, 64.0f, 4.0f).w, 1.0f) << "4: at the limit, kept";
+  EXPECT_EQ(sssHistoryRescale(glm::vec3(4.1f, 1.0f, 1.0f), h, 0.0f, 64.0f, 4.0f).w, 0.0f) << "one band beyond";
+  EXPECT_EQ(sssHistoryRescale(glm::vec3(1.0f, 0.24f, 1.0f), h, 0.0f, 64.0f, 4.0f).w, 0.0f) << "under 1/4";
+  EXPECT_EQ(sssHistoryRescale(glm::vec3(1.0f, 1.0f, 0.0f), h, 0.0f, 64.0f, 4.0f).w, 0.0f) << "the light left a band";
+  EXPECT_EQ(sssHistoryRescale(glm::vec3(1.0f), glm::vec3(1.0f, 1.0f, 0.0f), 0.0f, 64.0f, 4.0f).w, 0.0f)
+      << "light came into a band";
+  const glm::vec4 dark = sssHistoryRescale(glm::vec3(1.0f, 1.0f, 0.0f), glm::vec3(1.0f, 1.0f, 0.0f), 0.0f, 64.0f, 4.0f);
+  EXPECT_EQ(dark.w, 1.0f) << "a band dark in both is no change";
+  EXPECT_EQ(dark.z, 1.0f);
+}
+
+TEST(MapHistoryRescale, TheLevelsFootprintIsTheNearestPowerOfTwoToTheAskedLength) {
+  // 512 texels over 100 mm, 5 mm diffusion length: one diffusion length is 25.6 texels, nearest
+  // power of two 32 (level 5); half of it 12.8 → 16 (level 4).
+  EXPECT_EQ(sss::historyRescaleLevel(512, 100.0, 5.0, 1.0), 5);
+  EXPECT_EQ(sss::historyRescaleLevel(512, 100.0, 5.0, 0.5), 4);
+  EXPECT_EQ(sss::historyRescaleLevel(512, 100.0, 5.0, 2.0), 6);
+  EXPECT_EQ(sss::historyRescaleLevel(512, 100.0, 5.0, 0.01), sss::kHistoryRescaleMinLevel) << "under a texel";
+  EXPECT_EQ(sss::historyRescaleLevel(64, 100.0, 5.0, 1.0), 3) << "3.2 texels: 8 at least";
+  EXPECT_EQ(sss::historyRescaleLevel(512, 100.0, 5.0, 1000.0), 9) << "the whole map at most";
+  EXPECT_EQ(sss::historyRescaleLevel(4, 100.0, 5.0, 1.0), 2) << "a 4-texel map: its top level";
+}
+
 }  // namespace
 }  // namespace tallow

@@ -684,5 +684,50 @@ TEST(MapHistory, ASettingThatChangesTheEstimateRestartsTheMaps) {
   EXPECT_NEAR(mapCounts(s, 1.0f).maxFrames, 1.0f, 1e-6f);
 }
 
+/// Σ over the map texels holding frames of their mean B (rgb / alpha), per band.
+glm::dvec3 mapMeanTotal(PresetSession& s) {
+  glm::dvec3 total(0.0);
+  for (const glm::vec4& t : readLayers(s.renderer().radiosityMaps()->maps()))
+    if (t.a > 0.0f) total += glm::dvec3(t) / static_cast<double>(t.a);
+  return total;
+}
+
+TEST(MapHistory, TheKeptHistoryFollowsALightThatTurnsWhileTheSurfaceHolds) {
+  // The slab lit from straight above for 4 frames, then from 60° off the vertical: its top's
+  // irradiance halves (cos 60°) while no surface point moves, so every texel keeps its history.
+  // The maps' total is compared with a restart's under the new light (4 frames, the paper's own
+  // estimate): without sss.history_rescale the kept 4 frames of the old light hold it far above;
+  // with it, the history is rescaled to the new light's coarse means.
+  const std::vector<std::string> sets = {"render.width=48", "render.height=32", "sss.maps=4", "sss.samples=8",
+                                         "sss.map_size=64", "sss.light_map_size=64", "vpl.count=0",
+                                         "sss.history=8"};
+  const glm::vec3 turned(std::sin(glm::radians(60.0f)), std::cos(glm::radians(60.0f)), 0.0f);
+  PresetSession restart("slab", sets);
+  restart.scene().lights[0].direction = turned;
+  for (int f = 0; f < 4; ++f) restart.render(0.0);
+  const glm::dvec3 expected = mapMeanTotal(restart);
+  for (const char* rescale : {"0", "1"}) {
+    std::vector<std::string> with = sets;
+    with.push_back(std::string("sss.history_rescale=") + rescale);
+    PresetSession s("slab", with);
+    for (int f = 0; f < 4; ++f) s.render(0.0);
+    const glm::dvec3 before = mapMeanTotal(s);
+    s.scene().lights[0].direction = turned;
+    s.render(0.0);
+    EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 5) << "a light that turns is not a restart with sss.history";
+    const glm::dvec3 after = mapMeanTotal(s);
+    for (int c = 0; c < 3; ++c) {
+      const double ratio = after[c] / expected[c];
+      std::printf("[ history ] slab, light turned 60°, sss.history_rescale=%s, band %d: before %.4g, after %.4g, "
+                  "restart %.4g (after / restart %.3f)\n",
+                  rescale, c, before[c], after[c], expected[c], ratio);
+      if (std::string(rescale) == "0")
+        EXPECT_GT(ratio, 1.25) << "the kept frames of the old light lag: (4 · 2 + 1) / 5 of the restart's, less the sides'";
+      else
+        EXPECT_NEAR(ratio, 1.0, 0.03) << "rescaled to the new light";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tallow

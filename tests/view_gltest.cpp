@@ -388,8 +388,9 @@ TEST(Capture, ScriptChangesAreRecordedPerFrame) {
   // Frame i at i / fps until the pause at frame 1 holds the clock at 0.1 s; the seek puts frame 3 at 1.5 s.
   const double times[] = {0.0, 0.1, 0.1, 1.5};
   for (int i = 0; i < 4; ++i) EXPECT_DOUBLE_EQ(frames[i]["time_s"].get<double>(), times[i]) << i;
-  // Frames 1 and 2 show the same instant: the maps accumulate there, until the change of K restarts them.
-  EXPECT_EQ(frames[1]["sss"]["frames_accumulated"], 1);
+  // Frame 1 keeps frame 0's history (sss.history: the blob moved for 0.1 s) and frame 2 shows the same
+  // instant, but its change of K restarts the maps.
+  EXPECT_EQ(frames[1]["sss"]["frames_accumulated"], 2);
   EXPECT_EQ(frames[2]["changed"], json({{"sss.maps", 2}}));
   EXPECT_EQ(frames[2]["sss"]["maps"], 2);
   EXPECT_EQ(frames[2]["sss"]["frames_accumulated"], 1);

@@ -367,11 +367,11 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "When the geometry deforms or a light moves, the maps are not restarted: each "
                                       "map texel whose surface point (within sss.history_move) and normal (within 25 "
                                       "degrees) still hold keeps at most this many frames of its estimate, the others "
-                                      "start again; 0 (the default) restarts the maps on every change, as the paper "
-                                      "does: at the default N the lag of a kept history measured worse than a "
-                                      "restart (docs/RESULTS.md).",
+                                      "start again, and what is kept is rescaled to follow a moving light "
+                                      "(sss.history_rescale); 0 restarts the maps on every change, as the paper "
+                                      "does (docs/RESULTS.md compares the two).",
                                       0, 1 << 20),
-                              0),
+                              8),
                   [](auto& c) -> auto& { return c.render.sss.history; }));
   r.add(bind<float>(withDefault(declare("sss.history_move", "float", "× 1/σ_tr",
                                         "How far a map texel's surface point may move from one frame to the next and "
@@ -380,6 +380,16 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                         0, 100),
                                 0.5),
                     [](auto& c) -> auto& { return c.render.sss.historyMove; }));
+  r.add(bind<float>(withDefault(declare("sss.history_rescale", "float", "× 1/σ_tr",
+                                        "With sss.history: the footprint, in units of the shortest diffusion length, "
+                                        "over which each kept history is rescaled band by band to this frame's "
+                                        "estimate (the ratio of their means on a coarse mip level), so that it follows "
+                                        "a light that moves while the surface holds (the candle's sinking flame); a "
+                                        "ratio beyond 4 or under 1/4 starts the texel again. 0: the history is kept "
+                                        "as it was.",
+                                        0, 1000),
+                                1.0),
+                    [](auto& c) -> auto& { return c.render.sss.historyRescale; }));
   r.add(bind<bool>(withDefault(declare("sss.light_map_auto", "bool", "",
                                        "Raise the light G-buffer size above sss.light_map_size (to a power of two, at "
                                        "most the GPU's texture limit and 8192) until a texel is no larger than the "

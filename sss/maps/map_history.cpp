@@ -25,4 +25,11 @@ HistoryTolerance historyTolerance(const Scene& scene, double diffusionLengths) {
   return t;
 }
 
+int historyRescaleLevel(int mapSize, double spanMm, double shortestDiffusionMm, double diffusionLengths) {
+  const double texels = diffusionLengths * shortestDiffusionMm / std::max(spanMm, 1e-12) * mapSize;
+  const int top = static_cast<int>(std::floor(std::log2(std::max(mapSize, 1)) + 1e-9));
+  const int asked = texels > 1.0 ? static_cast<int>(std::lround(std::log2(texels))) : 0;
+  return std::clamp(std::max(asked, kHistoryRescaleMinLevel), 0, top);
+}
+
 }  // namespace tallow::sss

@@ -27,4 +27,20 @@ struct HistoryTolerance {
 };
 HistoryTolerance historyTolerance(const Scene& scene, double diffusionLengths);
 
+/// sss.history_rescale: the mip level of the maps whose footprint (2^level texels) is nearest to
+/// `diffusionLengths` times the shortest diffusion length, on maps of `mapSize` texels spanning
+/// `spanMm`; the coarse scale on which a kept history is rescaled to this frame's estimate
+/// (sssHistoryRescale). At least kHistoryRescaleMinLevel, at most log2(mapSize).
+int historyRescaleLevel(int mapSize, double spanMm, double shortestDiffusionMm, double diffusionLengths);
+
+/// The finest level the ratio is taken on: 8×8 texels. On fewer this frame's N samples a texel
+/// leave the ratio so noisy that its shrinkage (sssHistoryRescale) keeps much of the lag: the slab
+/// whose light turned 60° (MapHistory.TheKeptHistoryFollowsALightThatTurnsWhileTheSurfaceHolds)
+/// kept 25% of it on level 1 with N = 8.
+inline constexpr int kHistoryRescaleMinLevel = 3;
+
+/// Beyond this ratio of this frame's coarse mean to the history's (or under its inverse) a texel's
+/// history is dropped rather than rescaled: the light changed more than a lag can be corrected.
+inline constexpr float kHistoryMaxRatio = 4.0f;
+
 }  // namespace tallow::sss

@@ -68,7 +68,7 @@ std::string RadiosityMapsPass::reason(const FrameState& state) const {
 
 PassIo RadiosityMapsPass::io(const FrameState&) const {
   PassIo io{{resource::kGeometry, "scene.shapes", "scene.map_directions", "sss.maps", "sss.map_size", "sss.gather",
-             "sss.history", "sss.history_move", "accumulation"},
+             "sss.history", "sss.history_move", "sss.history_rescale", "accumulation"},
             {resource::kRadiosityMaps},
             {"sss.frames"}};
   append(io.reads, gatherReads());

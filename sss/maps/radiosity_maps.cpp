@@ -169,6 +169,7 @@ RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
                                     {GL_FRAGMENT_SHADER, "maps/map_gbuffer.frag"}}}),
       mapCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/radiosity_map.comp"}}}),
       historyCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/history.comp"}}}),
+      historyMerge_(shaders, {{{GL_COMPUTE_SHADER, "maps/history_merge.comp"}}}),
       dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
       dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
   const float zero[4] = {0, 0, 0, 0};
@@ -467,10 +468,16 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     if (history && (!previousPosition_.id() || previousPosition_.width() != size || previousPosition_.depth() != k)) {
       previousPosition_ = colourArray(GL_RGBA32F, size, k);
       previousNormal_ = colourArray(GL_RGBA32F, size, k);
+      // With the last frame's G-buffer, so that the first reuse allocates nothing the memory budget
+      // (radiosityMapBytes) did not count from the start.
+      historyMean_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
+      historyFresh_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
     }
     if (!history) {
       previousPosition_ = gpu::Texture();
       previousNormal_ = gpu::Texture();
+      historyMean_ = gpu::Texture();
+      historyFresh_ = gpu::Texture();
     }
     const gpu::Framebuffer fb =
         gpu::boundGBuffer(mapPosition_, mapNormal_, mapDepth_, 1.0f, "scattered radiosity maps' G-buffer");
@@ -478,9 +485,12 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     drawTranslucent(mapGBufferProgram_);
   };
 
-  if (!fresh && update == MapsUpdate::Reuse) {
+  const bool reuse = !fresh && update == MapsUpdate::Reuse;
+  const bool rescale = reuse && s.historyRescale > 0.0f;
+  if (reuse) {
     // Same views: the new G-buffer beside the last one, then each texel's sum kept, trimmed to
-    // sss.history − 1 frames or reset (maps/history.comp) before this frame's estimate is added.
+    // sss.history − 1 frames or reset (maps/history.comp) into historyMean_, and the maps emptied
+    // for this frame's estimate; mergeHistory adds the two back after the gather.
     std::swap(mapPosition_, previousPosition_);
     std::swap(mapNormal_, previousNormal_);
     drawMapGBuffer();
@@ -492,7 +502,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     p.set("uOldNormal", static_cast<int>(kOldNormal));
     p.set("uNewPosition", static_cast<int>(kNewPosition));
     p.set("uNewNormal", static_cast<int>(kNewNormal));
-    p.set("uHistory", static_cast<float>(s.history));
+    p.set("uHistoryFrames", static_cast<float>(s.history));
     p.set("uMaxMove", tolerance.maxMoveM);
     p.set("uMinCos", tolerance.minCos);
     previousPosition_.bind(kOldPosition);
@@ -500,6 +510,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     mapPosition_.bind(kNewPosition);
     mapNormal_.bind(kNewNormal);
     glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(1, historyMean_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     const auto groups = static_cast<GLuint>((size + 7) / 8);
     glDispatchCompute(groups, groups, static_cast<GLuint>(k));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
@@ -572,15 +583,49 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     setGatherUniforms(mapProgram_, scene, settings, 0, seed_);
     drawTranslucent(mapProgram_);
   }
+  if (reuse) mergeHistory(settings, k, size, rescale);
   ++frames_;
   ++seed_;
   glGenerateTextureMipmap(maps_.id());
 }
 
+void RadiosityMaps::mergeHistory(const RenderSettings& settings, int k, int size, bool rescale) {
+  gpu::Program& p = historyMerge_;
+  p.use();
+  const auto groups = static_cast<GLuint>((size + 7) / 8);
+  const GLbitfield barrier =
+      GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
+  glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);  // the fragment gather's blending
+  glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(1, historyMean_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, historyFresh_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  p.set("uRescale", static_cast<int>(rescale));
+  if (rescale) {
+    p.set("uStage", 0);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    glMemoryBarrier(barrier);
+    glGenerateTextureMipmap(historyMean_.id());
+    glGenerateTextureMipmap(historyFresh_.id());
+    constexpr GLuint kHistoryUnit = 0, kFreshUnit = 1;
+    p.set("uHistoryMips", static_cast<int>(kHistoryUnit));
+    p.set("uFreshMips", static_cast<int>(kFreshUnit));
+    historyMean_.bind(kHistoryUnit);
+    historyFresh_.bind(kFreshUnit);
+    const double spanMm = 2.0 * static_cast<double>(viewSphere_.radius) * 1000.0;
+    p.set("uLevel", static_cast<float>(
+                        historyRescaleLevel(size, spanMm, shortestDiffusionMm_, settings.sss.historyRescale)));
+    p.set("uMaxRatio", kHistoryMaxRatio);
+  }
+  p.set("uStage", 1);
+  glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+  glMemoryBarrier(barrier);
+}
+
 std::size_t RadiosityMaps::bytes() const {
   return dirPosition_.bytes() + dirNormal_.bytes() + dirDepth_.bytes() + pointPosition_.bytes() +
          pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes() + mapPosition_.bytes() +
-         mapNormal_.bytes() + previousPosition_.bytes() + previousNormal_.bytes();
+         mapNormal_.bytes() + previousPosition_.bytes() + previousNormal_.bytes() + historyMean_.bytes() +
+         historyFresh_.bytes();
 }
 
 }  // namespace tallow::sss

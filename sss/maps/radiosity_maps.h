@@ -160,15 +160,22 @@ class RadiosityMaps {
   void ensureMapTargets(int k, int size);
   void setLightUniforms(gpu::Program& program, const Scene& scene, GLuint firstUnit) const;
   bool viewsHold(const BoundingSphere& sphere) const;
+  /// After the gather on a history reuse: the kept history, rescaled with sss.history_rescale, and
+  /// this frame's estimate added into the maps (maps/history_merge.comp).
+  void mergeHistory(const RenderSettings& settings, int k, int size, bool rescale);
 
 
-  gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_;
+  gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_,
+      historyMerge_;
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
   gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
   gpu::Texture maps_, mapDepth_;
   gpu::Texture mapPosition_, mapNormal_;  ///< the maps' G-buffer (compute gather or history)
   gpu::Texture previousPosition_, previousNormal_;  ///< the last frame's (history only)
+  /// On a history reuse: the kept history (mean, frames), and with sss.history_rescale this frame's
+  /// mean where a history was kept; both mipmapped for the coarse ratio (maps/history_merge.comp).
+  gpu::Texture historyMean_, historyFresh_;
   gpu::Buffer gbufferViews_;   ///< std430 mat4 per light G-buffer layer being drawn
   gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered.geom)
   gpu::Buffer cameraViews_;    ///< the maps as Algorithm 1 reads them (cameraViews())
