@@ -98,12 +98,13 @@ def run(work, quick):
                "--set", "camera.position=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[0]),
                "--set", "camera.target=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[1]), "--equal-time"], ref_loose)
     # Fig. 11 and target 4: cost against screen occupancy at 1024x1024 (the chocolate-milk blob,
-    # animated, so the maps restart every frame as in the paper), K = 10 maps.
+    # animated, the maps restarted every frame as in the paper: sss.history=0), K = 10 maps.
     size = "256x256" if quick else "1024x1024"
     for method in ("radiosity-maps", "no-cache"):
         for fov in OCCUPANCY_FOVS[:2] if quick else OCCUPANCY_FOVS:
             tallow("capture", "--preset", "blob-chocolate", "--size", size, "--frames", "2" if quick else "5",
-                   "--set", f"method={method}", "--set", "sss.maps=10", "--set", f"camera.fov_deg={fov}",
+                   "--set", f"method={method}", "--set", "sss.maps=10", "--set", "sss.history=0",
+                   "--set", f"camera.fov_deg={fov}",
                    "--out", f"{work}/occupancy/{method}_{fov}")
     # Fig. 13: share of the bunny's visible pixels no map sees, against K.
     for k in COVERAGE_KS:
@@ -162,7 +163,7 @@ def run_vpl(work, quick):
                "--set", f"vpl.stable={stable}", "--out", f"{work}/flicker/stable_{stable}")
     # The candle at the paper's Fig. 1 settings: K = 28, N = 45, 80 VPLs (every frame recomputes all).
     tallow("capture", "--preset", "candle", "--size", "160x120" if quick else "640x480", "--frames", "3",
-           "--set", "sss.maps=28", "--set", "sss.samples=45", "--set", "vpl.count=80",
+           "--set", "sss.maps=28", "--set", "sss.samples=45", "--set", "vpl.count=80", "--set", "sss.history=0",
            "--out", f"{work}/candle_paper")
 
 
@@ -457,7 +458,7 @@ def report(work, md, images):
         wall = median([f["wall_ms"] for f in st["frames"][1:]] or [st["frames"][0]["wall_ms"]])
         pts[method].append((occupancy, wall, float(fov), st))
     st0 = pts["radiosity-maps"][0][3]
-    add("Chocolate-milk blob, animated (the maps restart every frame, as in the paper), %dx%d, K = %s maps of %s²,"
+    add("Chocolate-milk blob, animated (the maps restart every frame, as in the paper: `sss.history=0`), %dx%d, K = %s maps of %s²,"
         % (st0["resolution"][0], st0["resolution"][1], st0["parameters"]["sss.maps"], st0["parameters"]["sss.map_size"]))
     add("N = %s samples per texel (maps) or per pixel (no cache) and band; the paper used N = 1000, which llvmpipe"
         % st0["parameters"]["sss.samples"])
@@ -623,7 +624,8 @@ def report_vpl(work, add, images, rel_images):
     add("Temporal stability: the candle melting from t = 12 s at 30 frames per second under a flame fixed where it")
     add("is at 12 s; the mean absolute frame-to-frame change of the receivers' radiance relative to their mean")
     add("(stats.json `receiver_change`), with the paper's fixed directions and with VPLs re-drawn every frame. The")
-    add("maps restart every frame while the candle deforms, so their noise flickers too.")
+    add("maps keep each texel's history while the candle deforms (`sss.history`, the default), rescaled to this frame's")
+    add("estimate, so part of their noise changes from frame to frame too.")
     add("")
     add("| VPL directions | mean frame-to-frame change | frames |")
     add("|---|---:|---:|")
@@ -634,7 +636,7 @@ def report_vpl(work, add, images, rel_images):
     # The paper's candle settings.
     st = load(f"{work}/candle_paper/stats.json")
     walls = [f["wall_ms"] for f in st["frames"]]
-    add("The candle at the paper's Fig. 1 settings (K = 28, N = 45, 80 VPLs), %dx%d, every frame recomputed as the"
+    add("The candle at the paper's Fig. 1 settings (K = 28, N = 45, 80 VPLs), %dx%d, every frame recomputed (`sss.history=0`) as the"
         % tuple(st["resolution"]))
     add("candle melts: median frame %s ms on `%s` (the paper: 6 fps on a GTX 780 Ti; no GPU was available"
         % (fmt(median(walls), 0), st["gl"]["GL_RENDERER"]))

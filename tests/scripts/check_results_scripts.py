@@ -136,6 +136,7 @@ with tempfile.TemporaryDirectory() as tmp:
             " to its 5×5 median there 1.20 (a firefly above 4).") in text, text
     assert text.index("pixel (181, 133)") < text.index("pixel (5, 6)") < text.index("At equal wall time"), text
     assert "relative RMSE 30.0% before against 10.0% after: 3.00× lower (target 3×: met)" in text, text
+    assert "With the defaults alone (N = 8): 12.0% against 30.0% before, 2.50× lower in 33% of the wall time." in text, text
 # The equal-time N: guess round(8 × 6000 / 2000) = 24; its frames at 5200 ms give 200 ms per sample
 # over the defaults' 2000 ms at N = 8, so 6000 ms is reached at N = 8 + 4000 / 200 = 28.
 captured = []
