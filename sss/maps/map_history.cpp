@@ -1,6 +1,7 @@
 #include "sss/maps/map_history.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "sss/maps/radiosity_estimator.h"
@@ -27,7 +28,7 @@ HistoryTolerance historyTolerance(const Scene& scene, double diffusionLengths) {
 
 int historyRescaleLevel(int mapSize, double spanMm, double shortestDiffusionMm, double diffusionLengths) {
   const double texels = diffusionLengths * shortestDiffusionMm / std::max(spanMm, 1e-12) * mapSize;
-  const int top = static_cast<int>(std::floor(std::log2(std::max(mapSize, 1)) + 1e-9));
+  const int top = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(mapSize, 1)))) - 1;  // the last mip
   const int asked = texels > 1.0 ? static_cast<int>(std::lround(std::log2(texels))) : 0;
   return std::clamp(std::max(asked, kHistoryRescaleMinLevel), 0, top);
 }

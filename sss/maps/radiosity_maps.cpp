@@ -486,7 +486,6 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   };
 
   const bool reuse = !fresh && update == MapsUpdate::Reuse;
-  const bool rescale = reuse && s.historyRescale > 0.0f;
   if (reuse) {
     // Same views: the new G-buffer beside the last one, then each texel's sum kept, trimmed to
     // sss.history − 1 frames or reset (maps/history.comp) into historyMean_, and the maps emptied
@@ -583,13 +582,15 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     setGatherUniforms(mapProgram_, scene, settings, 0, seed_);
     drawTranslucent(mapProgram_);
   }
-  if (reuse) mergeHistory(settings, k, size, rescale);
+  if (reuse) mergeHistory(settings);
   ++frames_;
   ++seed_;
   glGenerateTextureMipmap(maps_.id());
 }
 
-void RadiosityMaps::mergeHistory(const RenderSettings& settings, int k, int size, bool rescale) {
+void RadiosityMaps::mergeHistory(const RenderSettings& settings) {
+  const int size = maps_.width(), k = maps_.depth();
+  const bool rescale = settings.sss.historyRescale > 0.0f;
   gpu::Program& p = historyMerge_;
   p.use();
   const auto groups = static_cast<GLuint>((size + 7) / 8);

@@ -162,7 +162,7 @@ class RadiosityMaps {
   bool viewsHold(const BoundingSphere& sphere) const;
   /// After the gather on a history reuse: the kept history, rescaled with sss.history_rescale, and
   /// this frame's estimate added into the maps (maps/history_merge.comp).
-  void mergeHistory(const RenderSettings& settings, int k, int size, bool rescale);
+  void mergeHistory(const RenderSettings& settings);
 
 
   gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_,
