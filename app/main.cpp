@@ -135,6 +135,8 @@ int main(int argc, char** argv) {
   compareCmd->add_option("--mask", compare.mask, "EXR whose alpha >= 0.5 marks the pixels compared (e.g. REF_stderr.exr)");
   compareCmd->add_option("--exposure-ev", compare.exposureEv, "exposure before the tone map [stops]");
   compareCmd->add_option("--scale", compare.scale, "top of the colour scale as a fraction, e.g. 0.2 (default: from the difference)");
+  compareCmd->add_flag("--ignore-non-finite", compare.ignoreNonFinite,
+                       "leave out the pixels where A or B is NaN or infinite (counted) instead of failing");
 
   auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
 

@@ -107,7 +107,10 @@ std::string describeFallbackVersion(void* (*getProcAddress)(const char*)) {
   if (!getString) return "no usable OpenGL";
   const auto* version = getString(GL_VERSION);
   const auto* renderer = getString(GL_RENDERER);
-  return std::string(version ? reinterpret_cast<const char*>(version) : "?") + " (" +
+  const std::string text = version ? reinterpret_cast<const char*>(version) : "?";
+  // "4.5 (Compatibility Profile) Mesa …" names a version that is there, but not as a core profile.
+  const bool compatibility = text.find("Compatibility") != std::string::npos;
+  return std::string(compatibility ? "no core profile of 4.5, only a compatibility context: " : "") + text + " (" +
          (renderer ? reinterpret_cast<const char*>(renderer) : "?") + ")";
 }
 

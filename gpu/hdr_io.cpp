@@ -68,7 +68,15 @@ class HdrDecoder {
     std::vector<std::uint8_t> planes(static_cast<std::size_t>(width_) * 4);
     for (int y = 0; y < height_; ++y) {
       readScanline(y, line, planes);
-      for (int x = 0; x < width_; ++x) image.at(x, y) = rgbeToFloat(&line[static_cast<std::size_t>(x) * 4], scale_);
+      for (int x = 0; x < width_; ++x) {
+        const glm::vec4 pixel = rgbeToFloat(&line[static_cast<std::size_t>(x) * 4], scale_);
+        // The largest RGBE values (about 1.7e38) overflow a float once EXPOSURE divides them.
+        if (!std::isfinite(pixel.r) || !std::isfinite(pixel.g) || !std::isfinite(pixel.b))
+          fail(name_, "scanline " + std::to_string(y) + ", pixel " + std::to_string(x) +
+                          ": the value is beyond a float's range (exponent " +
+                          std::to_string(line[static_cast<std::size_t>(x) * 4 + 3]) + " with the file's EXPOSURE)");
+        image.at(x, y) = pixel;
+      }
     }
     return image;
   }

@@ -45,12 +45,28 @@ std::size_t objectPixels(const Image& mask) {
   return static_cast<std::size_t>(std::count_if(mask.pixels.begin(), mask.pixels.end(), isObject));
 }
 
-ImageError imageError(const Image& image, const Image& reference, const Image& mask) {
+bool finitePixel(const glm::vec4& p) { return std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b); }
+
+std::size_t nonFinitePixels(const Image& image, const Image* mask) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    if ((!mask || isObject(mask->pixels[i])) && !finitePixel(image.pixels[i])) ++n;
+  return n;
+}
+
+ImageError imageError(const Image& image, const Image& reference, const Image& mask, const ImageErrorOptions& options) {
   checkSizes(image, reference, mask);
   double sumErr2 = 0.0, sumRef2 = 0.0, maxErr = 0.0, sumImage = 0.0, sumRef = 0.0;
-  std::size_t n = 0;
+  std::size_t n = 0, nonFiniteImage = 0, nonFiniteReference = 0, skipped = 0;
   for (std::size_t i = 0; i < mask.pixels.size(); ++i) {
     if (!isObject(mask.pixels[i])) continue;
+    const bool imageFinite = finitePixel(image.pixels[i]), referenceFinite = finitePixel(reference.pixels[i]);
+    nonFiniteImage += !imageFinite;
+    nonFiniteReference += !referenceFinite;
+    if (options.skipNonFinite && !(imageFinite && referenceFinite)) {
+      ++skipped;
+      continue;
+    }
     const glm::dvec3 r(reference.pixels[i]);
     const glm::dvec3 d = glm::dvec3(image.pixels[i]) - r;
     const double e2 = glm::dot(d, d);
@@ -63,6 +79,16 @@ ImageError imageError(const Image& image, const Image& reference, const Image& m
   }
   ImageError e;
   e.pixels = n;
+  e.nonFiniteImage = nonFiniteImage;
+  e.nonFiniteReference = nonFiniteReference;
+  e.skippedNonFinite = skipped;
+  // A NaN compared is an undefined error, not a small one (std::max and `> 0` would hide it); so is
+  // an error over no pixel, when every object pixel was left out.
+  if ((skipped == 0 && !e.finite()) || n == 0) {
+    constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+    e.rmse = e.relRmse = e.maxError = e.meanRatio = kUndefined;
+    return e;
+  }
   e.rmse = std::sqrt(sumErr2 / double(n));
   e.maxError = maxErr;
   e.meanRatio = sumRef > 0.0 ? sumImage / sumRef : (sumImage > 0.0 ? std::numeric_limits<double>::infinity() : 1.0);
@@ -71,7 +97,8 @@ ImageError imageError(const Image& image, const Image& reference, const Image& m
   return e;
 }
 
-std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& reference, const Image& mask) {
+std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& reference, const Image& mask,
+                                            const ImageErrorOptions& options) {
   checkSizes(image, reference, mask);
   int top = mask.height, bottom = -1;
   for (int y = 0; y < mask.height; ++y)
@@ -85,7 +112,7 @@ std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& ref
     for (int y = 0; y < m.height; ++y)
       if (y < from || y >= to)
         for (int x = 0; x < m.width; ++x) m.at(x, y).a = 0.0f;
-    return imageError(image, reference, m);
+    return imageError(image, reference, m, options);
   };
   return HalvesError{half(top, split), half(split, bottom + 1)};
 }

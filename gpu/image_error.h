@@ -17,6 +17,8 @@ namespace tallow::gpu {
 inline constexpr float kObjectMaskAlpha = 0.5f;
 
 struct ImageError {
+  /// NaN when a compared pixel of either image is not finite (and such pixels were not left out):
+  /// the error is then undefined, never 0.
   double rmse = 0.0;
   double relRmse = 0.0;  ///< RMSE / RMS of the reference (infinite for a black reference and RMSE > 0)
   double maxError = 0.0;
@@ -24,14 +26,33 @@ struct ImageError {
   /// (infinite for a black reference with a non-black image; 1 when both are black).
   double meanRatio = 1.0;
   std::size_t pixels = 0;  ///< object pixels compared
+  /// Object pixels with a NaN or infinite channel, in the image and in the reference.
+  std::size_t nonFiniteImage = 0, nonFiniteReference = 0;
+  /// Object pixels left out because one of the two is not finite (ImageErrorOptions::skipNonFinite).
+  std::size_t skippedNonFinite = 0;
+  bool finite() const { return nonFiniteImage == 0 && nonFiniteReference == 0; }
 };
+
+struct ImageErrorOptions {
+  /// Leave out (and count) the object pixels where either image is not finite, instead of making
+  /// every metric NaN.
+  bool skipNonFinite = false;
+};
+
+/// Whether all three channels of a pixel are finite (alpha is not looked at).
+bool finitePixel(const glm::vec4& p);
+/// Pixels of `image` with a NaN or infinite colour channel, over the object pixels of `mask` (all
+/// pixels when `mask` is null).
+std::size_t nonFinitePixels(const Image& image, const Image* mask = nullptr);
 
 /// Pixels of `mask` with alpha ≥ kObjectMaskAlpha.
 std::size_t objectPixels(const Image& mask);
 
 /// The metric above over the object pixels of `mask`. Throws std::invalid_argument with one line
-/// when the three sizes differ or the mask has no object pixel.
-ImageError imageError(const Image& image, const Image& reference, const Image& mask);
+/// when the three sizes differ or the mask has no object pixel. Non-finite pixels are counted;
+/// with any of them compared, rmse, relRmse, maxError and meanRatio are NaN.
+ImageError imageError(const Image& image, const Image& reference, const Image& mask,
+                      const ImageErrorOptions& options = {});
 
 /// Temporal stability (flicker): Σ_p Σ_c |now − before| / Σ_p Σ_c now over the pixels where `mask`
 /// is non-zero (one byte per pixel, top row first as Image), i.e. the mean absolute frame-to-frame
@@ -46,7 +67,8 @@ double relativeChange(const Image& now, const Image& before, const std::vector<s
 struct HalvesError {
   ImageError upper, lower;
 };
-std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& reference, const Image& mask);
+std::optional<HalvesError> imageErrorByHalf(const Image& image, const Image& reference, const Image& mask,
+                                            const ImageErrorOptions& options = {});
 
 /// Fireflies (issue 17): object pixels of `image` with a channel above `factor` times the median of
 /// that channel over the object pixels of its 5×5 neighbourhood (itself included; the upper median

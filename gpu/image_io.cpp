@@ -21,6 +21,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string_view>
@@ -656,39 +657,59 @@ PixelCensus censusPixels(const Image& image) {
   return census;
 }
 
-ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
-                      const std::map<std::string, std::string>& attributes) {
+namespace {
+/// One EXR into `tmp` (a fresh temporary), named `path` in errors; returns the sample type written.
+ExrPixelType writeExrInto(const std::filesystem::path& tmp, const std::filesystem::path& path, const Image& image,
+                          ExrPixelType type, const std::map<std::string, std::string>& attributes) {
   checkPixelCount(path, image);
   if (type == ExrPixelType::Half && censusPixels(image).beyondHalf > 0) type = ExrPixelType::Float;
-  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    try {
-      const Imf::PixelType pixelType = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
-      Imf::Header header = exrHeaderFor(image, pixelType, attributes);
-      // OutputFile does not convert sample types, so half data gets its own buffer.
-      std::vector<Imath::half> halves;
-      const char* base = reinterpret_cast<const char*>(image.pixels.data());
-      std::size_t sampleBytes = sizeof(float);
-      if (pixelType == Imf::HALF) {
-        halves.resize(image.pixels.size() * 4);
-        for (std::size_t i = 0; i < image.pixels.size(); ++i)
-          for (int c = 0; c < 4; ++c) halves[4 * i + static_cast<std::size_t>(c)] = Imath::half(image.pixels[i][c]);
-        base = reinterpret_cast<const char*>(halves.data());
-        sampleBytes = sizeof(Imath::half);
-      }
-      const std::size_t pixelBytes = 4 * sampleBytes;
-      Imf::FrameBuffer frameBuffer;
-      const char* names[4] = {"R", "G", "B", "A"};
-      for (std::size_t c = 0; c < 4; ++c)
-        frameBuffer.insert(names[c], Imf::Slice(pixelType, const_cast<char*>(base + c * sampleBytes), pixelBytes,
-                                                pixelBytes * static_cast<std::size_t>(image.width)));
-      Imf::OutputFile file(tmp.c_str(), header);
-      file.setFrameBuffer(frameBuffer);
-      file.writePixels(image.height);
-    } catch (const std::exception& e) {
-      throw std::runtime_error("cannot write " + path.string() + ": " + oneLine(e.what()));
+  try {
+    const Imf::PixelType pixelType = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
+    Imf::Header header = exrHeaderFor(image, pixelType, attributes);
+    // OutputFile does not convert sample types, so half data gets its own buffer.
+    std::vector<Imath::half> halves;
+    const char* base = reinterpret_cast<const char*>(image.pixels.data());
+    std::size_t sampleBytes = sizeof(float);
+    if (pixelType == Imf::HALF) {
+      halves.resize(image.pixels.size() * 4);
+      for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 4; ++c) halves[4 * i + static_cast<std::size_t>(c)] = Imath::half(image.pixels[i][c]);
+      base = reinterpret_cast<const char*>(halves.data());
+      sampleBytes = sizeof(Imath::half);
     }
-  });
+    const std::size_t pixelBytes = 4 * sampleBytes;
+    Imf::FrameBuffer frameBuffer;
+    const char* names[4] = {"R", "G", "B", "A"};
+    for (std::size_t c = 0; c < 4; ++c)
+      frameBuffer.insert(names[c], Imf::Slice(pixelType, const_cast<char*>(base + c * sampleBytes), pixelBytes,
+                                              pixelBytes * static_cast<std::size_t>(image.width)));
+    Imf::OutputFile file(tmp.c_str(), header);
+    file.setFrameBuffer(frameBuffer);
+    file.writePixels(image.height);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot write " + path.string() + ": " + oneLine(e.what()));
+  }
   return type;
+}
+}  // namespace
+
+ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
+                      const std::map<std::string, std::string>& attributes) {
+  ExrPixelType written = type;
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    written = writeExrInto(tmp, path, image, type, attributes);
+  });
+  return written;
+}
+
+void writeExrFiles(const std::vector<ExrOutput>& files) {
+  // Every file into its temporary first; only when all are written are they renamed.
+  std::vector<std::unique_ptr<PendingFile>> pending;
+  for (const ExrOutput& f : files) {
+    pending.push_back(std::make_unique<PendingFile>(f.path));
+    writeExrInto(pending.back()->temporary(), f.path, *f.image, f.type, f.attributes);
+  }
+  for (const auto& p : pending) p->commit();
 }
 
 Image readExr(const std::filesystem::path& path) {

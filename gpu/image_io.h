@@ -52,6 +52,16 @@ PixelCensus censusPixels(const Image& image);
 ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
                       const std::map<std::string, std::string>& attributes = {});
 
+/// Several EXR files (a reference and its standard error) written whole or not at all: each into a
+/// temporary beside it, then, only when every one is written, all renamed onto their names.
+struct ExrOutput {
+  std::filesystem::path path;
+  const Image* image = nullptr;
+  ExrPixelType type = ExrPixelType::Float;
+  std::map<std::string, std::string> attributes;
+};
+void writeExrFiles(const std::vector<ExrOutput>& files);
+
 /// Reads R, G, B and A (1 where absent) of a single-part flat EXR, any sample type, as float.
 /// The result covers the data window. A file with only a Y channel reads as grey.
 Image readExr(const std::filesystem::path& path);

@@ -72,12 +72,8 @@ FieldSource::FieldSource(const SceneObject& o) : parts_(std::make_unique<Parts>(
     case FieldKind::Mesh: {
       // As a mesh object: largest extent `scale` metres, bottom centre at the origin.
       geometry::TriangleMesh mesh = geometry::readPly(o.field.meshPath);
-      const geometry::Aabb b = mesh.bounds();
-      const glm::vec3 size = b.size();
-      const float extent = std::max(size.x, std::max(size.y, size.z));
-      const float s = extent > 0.0f ? o.transform.scale / extent : 1.0f;
-      const glm::vec3 anchor(b.centre().x, b.min.y, b.centre().z);
-      for (glm::vec3& v : mesh.positions) v = (v - anchor) * s;
+      const SceneGeometry::MeshPlacement placed = SceneGeometry::meshPlacement(mesh, o.transform.scale, o.field.meshPath);
+      for (glm::vec3& v : mesh.positions) v = (v - placed.anchor) * placed.factor;
       p.mesh = std::make_unique<geometry::MeshLevelSetField>(mesh, kMeshLevelSetResolution);
       p.bounds = p.mesh->bounds();
       if (p.melts()) {

@@ -2,7 +2,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry/ply_reader.h"
@@ -35,7 +37,11 @@ std::string shapeKey(const SceneObject& o) {
 
 geometry::TriangleMesh SceneGeometry::shapeMesh(const SceneObject& object) {
   switch (object.shape) {
-    case ShapeKind::Mesh: return geometry::readPly(object.meshPath);
+    case ShapeKind::Mesh: {
+      geometry::TriangleMesh mesh = geometry::readPly(object.meshPath);
+      meshPlacement(mesh, object.transform.scale, object.meshPath);  // throws, naming the file
+      return mesh;
+    }
     case ShapeKind::Sphere: return geometry::makeSphere(kSphereRings, kSphereSegments);
     case ShapeKind::Plane: return geometry::makePlane();
     case ShapeKind::Box: return geometry::makeBox();
@@ -48,6 +54,45 @@ geometry::TriangleMesh SceneGeometry::shapeMesh(const SceneObject& object) {
   throw std::logic_error("unknown shape");
 }
 
+SceneGeometry::MeshPlacement SceneGeometry::placeMesh(const geometry::Aabb& local, float scale) {
+  // In double: the float difference of ±3e38 overflows.
+  const glm::dvec3 size = glm::dvec3(local.max) - glm::dvec3(local.min);
+  const double extent = std::max(size.x, std::max(size.y, size.z));
+  MeshPlacement p;
+  p.factor = extent > 0.0 ? static_cast<float>(static_cast<double>(scale) / extent) : 1.0f;
+  p.anchor = glm::vec3(0.5 * (glm::dvec3(local.min) + glm::dvec3(local.max)));
+  p.anchor.y = local.min.y;
+  return p;
+}
+
+SceneGeometry::MeshPlacement SceneGeometry::meshPlacement(const geometry::TriangleMesh& mesh, float scale,
+                                                         const std::filesystem::path& file) {
+  const geometry::Aabb b = mesh.bounds();
+  const auto fail = [&](const std::string& why) { throw std::runtime_error(file.string() + ": " + why); };
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return std::string(text);
+  };
+  if (b.empty() || b.min == b.max) fail("its vertices are all at one point: there is nothing to draw at any scale");
+  const MeshPlacement p = placeMesh(b, scale);
+  const glm::dvec3 size = glm::dvec3(b.max) - glm::dvec3(b.min);
+  // A factor below float's normal range (or 0, or infinite) would flatten or blow up the object.
+  if (!(p.factor >= std::numeric_limits<float>::min()) || !std::isfinite(p.factor) || !std::isfinite(p.anchor.x) ||
+      !std::isfinite(p.anchor.z))
+    fail("its extent of " + number(std::max(size.x, std::max(size.y, size.z))) + " cannot be scaled to " +
+         number(scale) + " m in single precision; rescale the file's coordinates");
+  // The area the triangles will have once placed: none means the object would vanish.
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const auto at = [&](int k) { return (glm::dvec3(mesh.positions[t[k]]) - glm::dvec3(p.anchor)) * double(p.factor); };
+    area += 0.5 * glm::length(glm::cross(at(1) - at(0), at(2) - at(0)));
+  }
+  if (!(area > 0.0))
+    fail("its triangles have no area (every vertex on one line): there is nothing to draw at any scale");
+  return p;
+}
+
 glm::mat4 SceneGeometry::modelMatrix(const SceneObject& o, const geometry::Aabb& local) {
   const Transform& t = o.transform;
   glm::mat4 rotation(1.0f);
@@ -57,11 +102,8 @@ glm::mat4 SceneGeometry::modelMatrix(const SceneObject& o, const geometry::Aabb&
   glm::mat4 shape(1.0f);
   switch (o.shape) {
     case ShapeKind::Mesh: {
-      const glm::vec3 size = local.size();
-      const float extent = std::max(size.x, std::max(size.y, size.z));
-      const float s = extent > 0.0f ? t.scale / extent : 1.0f;
-      const glm::vec3 anchor(local.centre().x, local.min.y, local.centre().z);
-      shape = glm::scale(glm::mat4(1.0f), glm::vec3(s)) * glm::translate(glm::mat4(1.0f), -anchor);
+      const MeshPlacement p = placeMesh(local, t.scale);  // checked by meshPlacement when the mesh was read
+      shape = glm::scale(glm::mat4(1.0f), glm::vec3(p.factor)) * glm::translate(glm::mat4(1.0f), -p.anchor);
       break;
     }
     case ShapeKind::Sphere: shape = glm::scale(glm::mat4(1.0f), glm::vec3(t.scale)); break;

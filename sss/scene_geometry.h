@@ -11,6 +11,7 @@
 //            Its triangles come from the renderer's GpuDualContouring (attachField).
 #include <glm/glm.hpp>
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -57,8 +58,23 @@ class SceneGeometry {
   std::size_t triangleCount() const;
   std::size_t bytes() const;
 
-  /// The object-space mesh of a shape, as it is drawn (for tests and the CPU reference).
+  /// The object-space mesh of a shape, as it is drawn (for tests and the CPU reference). A mesh file
+  /// is read and checked with meshPlacement.
   static geometry::TriangleMesh shapeMesh(const SceneObject& object);
+
+  /// How a mesh file's triangles become an object `scale` metres across: scaled by `factor` about
+  /// `anchor` (the centre of its bounding box's bottom), which goes to the origin.
+  struct MeshPlacement {
+    float factor = 1.0f;
+    glm::vec3 anchor{0.0f};
+  };
+  /// The placement of `mesh` (read from `file`) at `scale`, checked: throws std::runtime_error naming
+  /// the file when it cannot be drawn at that scale — its vertices all at one point or on one line
+  /// (no area), or an extent that single precision cannot scale to `scale` metres — rather than let
+  /// the object vanish or fail later without the file's name.
+  static MeshPlacement meshPlacement(const geometry::TriangleMesh& mesh, float scale, const std::filesystem::path& file);
+  /// The placement of a mesh whose bounds are `local`, unchecked (computed in double).
+  static MeshPlacement placeMesh(const geometry::Aabb& local, float scale);
   /// Object → world transform of `object` whose object-space bounds are `local`.
   static glm::mat4 modelMatrix(const SceneObject& object, const geometry::Aabb& local);
 

@@ -170,16 +170,16 @@ TEST_F(BenchCli, TableHasOneRowPerMethodAndSettingWithFiniteErrors) {
   // with its sweep value (placed clear of the others) where it has one; a dashed line at the reference's ε.
   std::ifstream gp(out / "speed_error.gp");
   const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
-  const std::regex series("with points pt ([0-9]+) ps [0-9.]+ lc rgb '(#[0-9A-Fa-f]+)' title \"([a-z-]+)\"");
+  const std::regex series("with points pt ([0-9]+) ps [0-9.]+ lc rgb '(#[0-9A-Fa-f]+)' title '([a-z-]+)'");
   std::map<std::string, std::pair<std::string, std::string>> styles;
   for (auto it = std::sregex_iterator(script.begin(), script.end(), series); it != std::sregex_iterator(); ++it)
     styles[(*it)[3]] = {(*it)[1], (*it)[2]};
   ASSERT_EQ(styles.size(), 2u) << script;
   EXPECT_NE(styles["albedo"].first, styles["radiosity-maps"].first);
   EXPECT_NE(styles["albedo"].second, styles["radiosity-maps"].second);
-  const std::regex label("set label \"[48]\" at screen");
+  const std::regex label("set label '[48]' at screen");
   EXPECT_EQ(std::distance(std::sregex_iterator(script.begin(), script.end(), label), std::sregex_iterator()), 2) << script;
-  EXPECT_NE(script.find("set label \"reference ε "), std::string::npos) << script;
+  EXPECT_NE(script.find("set label 'reference ε "), std::string::npos) << script;
   EXPECT_NE(script.find("nohead dt 2"), std::string::npos) << "the ε line";
   EXPECT_TRUE(std::filesystem::is_regular_file(out / "speed_error.png"));
   // Each row's comparison picture: reference, first and last frames and their differences in false colour.

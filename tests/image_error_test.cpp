@@ -221,5 +221,52 @@ TEST(FireflyCount, EdgesAndTheObjectsBorderAreNoFireflies) {
   EXPECT_THROW(gpu::fireflyCount(column, step), std::invalid_argument);
 }
 
+// Issue 37, point 3: a NaN in either image used to leave every metric at 0 (std::max and "> 0"
+// skip NaN), so a broken reference scored a perfect match.
+TEST(ImageError, ANonFinitePixelMakesTheErrorUndefinedNotZero) {
+  const gpu::Image mask = rectMask(1, 1, 5, 4);
+  const gpu::Image ref = constant(glm::vec3(0.5f));
+  gpu::Image nanRef = ref, infImage = ref;
+  nanRef.at(2, 2) = glm::vec4(std::nanf(""), 0.5f, 0.5f, 1.0f);
+  infImage.at(3, 1).g = INFINITY;
+  const gpu::ImageError a = gpu::imageError(ref, nanRef, mask);
+  EXPECT_TRUE(std::isnan(a.rmse));
+  EXPECT_TRUE(std::isnan(a.relRmse));
+  EXPECT_TRUE(std::isnan(a.maxError));
+  EXPECT_TRUE(std::isnan(a.meanRatio));
+  EXPECT_EQ(a.nonFiniteReference, 1u);
+  EXPECT_EQ(a.nonFiniteImage, 0u);
+  EXPECT_FALSE(a.finite());
+  const gpu::ImageError b = gpu::imageError(infImage, ref, mask);
+  EXPECT_TRUE(std::isnan(b.relRmse));
+  EXPECT_EQ(b.nonFiniteImage, 1u);
+  // Outside the mask a NaN is not compared, so not counted.
+  gpu::Image outside = ref;
+  outside.at(0, 0).r = std::nanf("");
+  EXPECT_TRUE(gpu::imageError(outside, ref, mask).finite());
+  EXPECT_EQ(gpu::nonFinitePixels(outside, &mask), 0u);
+  EXPECT_EQ(gpu::nonFinitePixels(outside), 1u);
+}
+
+TEST(ImageError, NonFinitePixelsLeftOutWhenAskedAreCounted) {
+  // Image 0.625 against 0.5 everywhere but one NaN pixel of the reference: left out, the other 11
+  // pixels give Δ = 0.125 in every band, relative RMSE 0.125 / 0.5 = 0.25.
+  const gpu::Image mask = rectMask(1, 1, 5, 4);
+  gpu::Image ref = constant(glm::vec3(0.5f));
+  ref.at(2, 2).b = std::nanf("");
+  const gpu::Image img = constant(glm::vec3(0.625f));
+  gpu::ImageErrorOptions options;
+  options.skipNonFinite = true;
+  const gpu::ImageError e = gpu::imageError(img, ref, mask, options);
+  EXPECT_EQ(e.pixels, 11u);
+  EXPECT_EQ(e.skippedNonFinite, 1u);
+  EXPECT_EQ(e.nonFiniteReference, 1u);
+  EXPECT_NEAR(e.relRmse, 0.25, 1e-12);
+  EXPECT_NEAR(e.meanRatio, 1.25, 1e-12);
+  // Every compared pixel left out: nothing to measure, undefined again.
+  gpu::Image allNan = constant(glm::vec3(std::nanf("")));
+  EXPECT_TRUE(std::isnan(gpu::imageError(img, allNan, mask, options).relRmse));
+}
+
 }  // namespace
 }  // namespace tallow

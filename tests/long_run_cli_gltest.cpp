@@ -81,7 +81,9 @@ int checkCaptureStoppedCleanly(const fs::path& out, const std::string& signal) {
   return n;
 }
 
-TEST(LongRuns, CaptureStopsAfterTheFrameInHandOnSigint) {
+/// A capture with --video (when ffmpeg is there) stopped by `signal`: every frame whole, the exit
+/// status 128 + signal, no temporary left, the video closed with the frames written.
+void checkCaptureWithVideoStops(int signal, const std::string& name) {
   test::TempDir dir;
   const fs::path out = dir.path() / "o", video = dir.path() / "v.mp4";
   const bool ffmpeg = std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") == 0;
@@ -89,10 +91,11 @@ TEST(LongRuns, CaptureStopsAfterTheFrameInHandOnSigint) {
   if (ffmpeg) args.insert(args.end(), {"--video", video.string()});
   TallowProcess p(args);
   ASSERT_TRUE(p.waitUntil([&] { return fs::exists(out / "frame_0002.png"); }, kStartTimeout)) << p.err();
-  p.signal(SIGINT);
-  EXPECT_EQ(p.wait(), 130) << p.err();
-  const int n = checkCaptureStoppedCleanly(out, "SIGINT");
-  EXPECT_NE(p.err().find("capture stopped by SIGINT after " + std::to_string(n) + " of 400 frame(s)"), std::string::npos)
+  p.signal(signal);
+  EXPECT_EQ(p.wait(), 128 + signal) << p.err();
+  const int n = checkCaptureStoppedCleanly(out, name);
+  EXPECT_NE(p.err().find("capture stopped by " + name + " after " + std::to_string(n) + " of 400 frame(s)"),
+            std::string::npos)
       << p.err();
   EXPECT_EQ(hiddenFiles(dir.path()), std::vector<std::string>{});
   if (ffmpeg) {
@@ -104,6 +107,8 @@ TEST(LongRuns, CaptureStopsAfterTheFrameInHandOnSigint) {
   }
 }
 
+TEST(LongRuns, CaptureStopsAfterTheFrameInHandOnSigint) { checkCaptureWithVideoStops(SIGINT, "SIGINT"); }
+
 TEST(LongRuns, CaptureStopsOnSigtermWith143) {
   test::TempDir dir;
   const fs::path out = dir.path() / "o";
@@ -112,6 +117,49 @@ TEST(LongRuns, CaptureStopsOnSigtermWith143) {
   p.signal(SIGTERM);
   EXPECT_EQ(p.wait(), 143) << p.err();
   checkCaptureStoppedCleanly(out, "SIGTERM");
+  EXPECT_EQ(hiddenFiles(dir.path()), std::vector<std::string>{});
+}
+
+// Issue 37, point 5: a dropped ssh session sends SIGHUP, which ended capture with stats.json saying
+// "running" forever, reference with nothing written and --video with its temporaries left.
+TEST(LongRuns, CaptureStopsOnSighupWith129AndNoTemporaries) { checkCaptureWithVideoStops(SIGHUP, "SIGHUP"); }
+
+TEST(LongRuns, ACaptureKilledOutrightLeavesARecordOfEveryFrameItFinished) {
+  // SIGKILL cannot be handled: stats.json says "running" and names the JSON Lines file, whose lines
+  // are the frames written (docs/commands.md).
+  test::TempDir dir;
+  const fs::path out = dir.path() / "o";
+  TallowProcess p(longCapture(out));
+  ASSERT_TRUE(p.waitUntil([&] { return fs::exists(out / "frame_0003.png"); }, kStartTimeout)) << p.err();
+  p.signal(SIGKILL);
+  EXPECT_EQ(p.wait(), 128 + SIGKILL);
+  const json stats = readJson(out / "stats.json");
+  EXPECT_EQ(stats["run"]["state"], "running");
+  ASSERT_EQ(stats["run"]["frames_file"], "stats.frames.jsonl");
+  std::ifstream lines(out / "stats.frames.jsonl");
+  int n = 0;
+  for (std::string line; std::getline(lines, line); ++n) EXPECT_EQ(json::parse(line)["index"], n);
+  EXPECT_GE(n, 3);
+  for (int i = 0; i < n; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.exr", i);
+    EXPECT_EQ(gpu::readExr(out / name).width, 96) << name;
+  }
+}
+
+TEST(LongRuns, ReferenceWritesThePassesDoneOnSighup) {
+  test::TempDir dir;
+  const fs::path ref = dir.path() / "ref.exr";
+  TallowProcess p({"reference", "--preset", "slab", "--size", "32x24", "--spp", "100000", "--points", "20000", "--out",
+                   ref.string()},
+                  {"TALLOW_PROGRESS=lines"});
+  ASSERT_TRUE(p.waitUntil([&] { return p.err().find("reference: pass ") != std::string::npos; }, kStartTimeout))
+      << p.err();
+  p.signal(SIGHUP);
+  EXPECT_EQ(p.wait(), 129) << p.err();
+  EXPECT_EQ(gpu::readExr(ref).width, 32);
+  EXPECT_EQ(gpu::readExr(dir.path() / "ref_stderr.exr").height, 24);
+  EXPECT_EQ(gpu::readExrStringAttributes(ref).at("tallow.stopped_by"), "SIGHUP");
   EXPECT_EQ(hiddenFiles(dir.path()), std::vector<std::string>{});
 }
 

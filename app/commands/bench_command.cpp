@@ -20,6 +20,7 @@
 #include "app/commands/frame_stats.h"
 #include "app/commands/gnuplot.h"
 #include "app/commands/interrupt.h"
+#include "app/commands/output_folder.h"
 #include "app/commands/mesh_command.h"
 #include "app/commands/progress.h"
 #include "app/commands/provenance.h"
@@ -311,7 +312,9 @@ std::string cell(const json& v) {
 }
 
 json errorJson(const gpu::ImageError& e) {
-  return {{"rmse", e.rmse}, {"rel_rmse", e.relRmse}, {"max", e.maxError}, {"mean_ratio", e.meanRatio}};
+  const auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  return {{"rmse", number(e.rmse)}, {"rel_rmse", number(e.relRmse)}, {"max", number(e.maxError)},
+          {"mean_ratio", number(e.meanRatio)}, {"non_finite_pixels", e.nonFiniteImage}};
 }
 
 /// "4.2%" (or "unknown" for a reference without an estimate).
@@ -322,27 +325,28 @@ std::string percent(double v) {
   return text;
 }
 
-/// The rows' convergence after the restart (convergence.png, its script kept as convergence.gp).
-void writeConvergencePlot(const std::filesystem::path& outDir, const std::string& title) {
-  const std::filesystem::path out = std::filesystem::absolute(outDir);  // the kept script runs from anywhere
-  runGnuplot(
-      out / "convergence.gp",
-      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
+/// The rows' convergence after the restart (convergence.png, its script kept as convergence.gp,
+/// which reads convergence.csv beside it). `rows`: the rows' names (fileStem: no blank in them).
+void writeConvergencePlot(const std::filesystem::path& outDir, const std::string& title,
+                          const std::vector<std::string>& rows) {
+  std::string words;
+  for (const std::string& r : rows) words += (words.empty() ? "" : " ") + r;
+  GnuplotRun(outDir).draw(
+      [&](std::FILE* f, const std::vector<std::string>& output) {
         // convergence.csv: column 1 the row's name; the others are looked up by header name.
         std::fprintf(f,
-                     "# redraw: gnuplot -e \"convergence_png='convergence.png'\" convergence.gp\n"
-                     "if (!exists(\"convergence_png\")) convergence_png = '%s'\n"
                      "set key autotitle columnhead\n"
-                     "set output convergence_png\n"
-                     "set title \"%s: convergence after a restart\" noenhanced\n"
+                     "set output %s\n"
+                     "set title %s noenhanced\n"
                      "set xlabel 'frames since the restart'\nset ylabel 'relative RMSE'\nset grid\n"
                      "set key outside right noenhanced\n"
-                     "rows = system(\"tail -n +2 '%s' | cut -d, -f1 | uniq\")\n"
-                     "plot for [r in rows] '%s' using ((strcol(1) eq r) ? column('frame') + 1 : 1/0):'rel_rmse' "
+                     "rows = %s\n"
+                     "plot for [r in rows] 'convergence.csv' using ((strcol(1) eq r) ? column('frame') + 1 : 1/0):'rel_rmse' "
                      "with linespoints title r\n",
-                     tmp[0].c_str(), title.c_str(), (out / "convergence.csv").c_str(), (out / "convergence.csv").c_str());
+                     output[0].c_str(), gnuplotString(title + ": convergence after a restart").c_str(),
+                     gnuplotString(words).c_str());
       },
-      {out / "convergence.png"}, "the bench's convergence plot", /*keepScript=*/true);
+      {"convergence.png"}, "the bench's convergence plot", "convergence.gp");
 }
 
 /// What the bench has done so far, as the tables and bench.json say it.
@@ -643,6 +647,16 @@ int runBench(const BenchOptions& o) {
 
   const std::filesystem::path out(o.outDir);
   checkWritableFolder(out);
+  // The folder is this run's: a second bench into it refuses, and what an earlier one left goes
+  // just before this one writes its first file.
+  OutputFolder folder(out, "bench");
+  bool claimed = false;
+  const auto claimFolder = [&] {
+    if (claimed) return;
+    folder.clearEarlierRun({"bench.csv", "bench.json", "convergence.csv", "convergence.png", "convergence.gp",
+                            "speed_error.png", "speed_error.gp", "reference.exr", "reference_*.exr", kRowsFolder});
+    claimed = true;
+  };
 
   BenchState state;
   state.options = &o;
@@ -682,18 +696,21 @@ int runBench(const BenchOptions& o) {
       ReferenceTracker tracker(tracked, progress);
       computeGroupReference(o, g, std::ref(tracker));
       progress.finish();
-      std::filesystem::create_directories(out);
+      claimFolder();
       std::map<std::string, std::string> attributes = {{"tallow.preset", base.presetName},
                                                        {"tallow.passes", std::to_string(g.info["passes"].get<int>())},
                                                        {"tallow.rel_error", formatNumber(g.relError())},
                                                        {"tallow.version", tallowVersion()},
                                                        {"tallow.complete", g.complete ? "yes" : "no"}};
-      gpu::writeExr(out / g.file, g.radiance, gpu::ExrPixelType::Float, attributes);
-      gpu::writeExr(standardErrorPath(out / g.file), g.standardError, gpu::ExrPixelType::Float, attributes);
+      gpu::writeExrFiles({{out / g.file, &g.radiance, gpu::ExrPixelType::Float, attributes},
+                          {standardErrorPath(out / g.file), &g.standardError, gpu::ExrPixelType::Float, attributes}});
       std::fprintf(stderr, "tallow: bench: %s: %d pass(es), relative standard error ε %s%s\n", g.file.c_str(),
                    g.info["passes"].get<int>(), percent(g.relError()).c_str(), g.complete ? "" : " (stopped early)");
     }
     g.objectPixels = gpu::objectPixels(g.standardError);
+    if (const std::size_t bad = gpu::nonFinitePixels(g.radiance))
+      throw std::runtime_error("bench: the reference has " + std::to_string(bad) +
+                               " NaN or infinite pixel(s): every error against it would be undefined");
     g.fireflies = gpu::fireflyCount(g.radiance, g.standardError);
     if (o.receivers && (g.emergent.pixels.empty() || gpu::objectPixels(g.emergent) == 0))
       throw InputError("bench: --receivers: the reference has no receiver pixel (no opaque surface in view)");
@@ -752,6 +769,10 @@ int runBench(const BenchOptions& o) {
                   row.lastHalves ? ratioText(row.lastHalves->lower.meanRatio).c_str() : "-", row.lastFireflies,
                   ref.fireflies);
     progress.print(line, stdout);
+    if (!row.lastError.finite())
+      warn(&progress, c.name + ": " + std::to_string(row.lastError.nonFiniteImage) +
+                          " object pixel(s) of the last frame are NaN or infinite: its error is undefined");
+    claimFolder();
     writeRowPictures(out / kRowsFolder / c.name, c, ref, row, figures);
     // The pictures are on disk: the row keeps only its numbers.
     row.first = row.last = row.equalTimeImage = gpu::Image();
@@ -762,7 +783,7 @@ int runBench(const BenchOptions& o) {
   progress.finish();
 
   state.state = interrupted() ? "interrupted" : "complete";
-  std::filesystem::create_directories(out);
+  claimFolder();
   writeTables(out, state);
   if (figures && !state.rows.empty()) {
     std::vector<SpeedErrorPoint> points;
@@ -784,9 +805,10 @@ int runBench(const BenchOptions& o) {
       if (!g.settings.empty()) label += ")";
       lines.push_back({g.relError(), label});
     }
-    const std::filesystem::path absolute = std::filesystem::absolute(out);
-    writeSpeedErrorPlot(absolute / "speed_error.gp", absolute / "speed_error.png", base.presetName, points, lines);
-    writeConvergencePlot(out, base.presetName);
+    writeSpeedErrorPlot(out, base.presetName, points, lines);
+    std::vector<std::string> rowNames;
+    for (const auto& [index, row] : state.rows) rowNames.push_back(cases[index].name);
+    writeConvergencePlot(out, base.presetName, rowNames);
   }
   if (interrupted()) {
     std::fprintf(stderr, "tallow: bench stopped by %s after %zu of %zu row(s); wrote them to %s\n", interruptName(),
@@ -795,6 +817,14 @@ int runBench(const BenchOptions& o) {
   }
   std::printf("tallow: bench of %s (%dx%d, %zu row(s), %s) -> %s\n", base.presetName.c_str(), width, height,
               state.rows.size(), context->info().renderer.c_str(), out.string().c_str());
+  // A row whose error is undefined is a failed comparison, not a perfect one.
+  const std::size_t undefined = static_cast<std::size_t>(std::count_if(
+      state.rows.begin(), state.rows.end(), [](const auto& r) { return !r.second.lastError.finite(); }));
+  if (undefined > 0) {
+    std::fprintf(stderr, "tallow: bench: %zu row(s) rendered NaN or infinite pixels: their error is undefined\n",
+                 undefined);
+    return 1;
+  }
   return 0;
 }
 

@@ -84,7 +84,7 @@ std::string errorTics(const Axis& a) {
   for (std::size_t i = 0; i < tics.size(); ++i) {
     char tic[64];
     // Tic labels are formats to gnuplot: the percent sign doubled.
-    std::snprintf(tic, sizeof tic, "%s\"%.3g%%%%\" %.9g", i ? ", " : "", 100.0 * tics[i], tics[i]);
+    std::snprintf(tic, sizeof tic, "%s'%.3g%%%%' %.9g", i ? ", " : "", 100.0 * tics[i], tics[i]);
     text += tic;
   }
   return text + ")\n";
@@ -121,7 +121,7 @@ std::vector<LabelPlacement> placeLabels(const std::vector<glm::dvec2>& anchors, 
   return out;
 }
 
-void writeSpeedErrorPlot(const std::filesystem::path& script, const std::filesystem::path& png, const std::string& title,
+void writeSpeedErrorPlot(const std::filesystem::path& folder, const std::string& title,
                          const std::vector<SpeedErrorPoint>& points, const std::vector<ReferenceLine>& references) {
   std::vector<double> xs, ys;
   for (const SpeedErrorPoint& p : points) {
@@ -162,13 +162,9 @@ void writeSpeedErrorPlot(const std::filesystem::path& script, const std::filesys
       methods.push_back(p.method);
       styleOf[p.method] = p.style;
     }
-  runGnuplot(
-      script,
-      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
-        std::fprintf(f, "# redraw: gnuplot -e \"speed_png='%s'\" %s\n", png.filename().c_str(),
-                     script.filename().c_str());
-        std::fprintf(f, "if (!exists(\"speed_png\")) speed_png = %s\n", gnuplotString(tmp[0].string()).c_str());
-        std::fprintf(f, "set terminal pngcairo size %d,%d font ',11'\nset output speed_png\n", kWidth, kHeight);
+  GnuplotRun(folder).draw(
+      [&](std::FILE* f, const std::vector<std::string>& output) {
+        std::fprintf(f, "set terminal pngcairo size %d,%d font ',11'\nset output %s\n", kWidth, kHeight, output[0].c_str());
         std::fprintf(f, "set title %s noenhanced\n", gnuplotString(title + ": speed against error").c_str());
         std::fprintf(f, "set lmargin at screen %.6f\nset rmargin at screen %.6f\n", plot.x0 / kWidth, plot.x1 / kWidth);
         std::fprintf(f, "set bmargin at screen %.6f\nset tmargin at screen %.6f\n", plot.y0 / kHeight, plot.y1 / kHeight);
@@ -219,7 +215,7 @@ void writeSpeedErrorPlot(const std::filesystem::path& script, const std::filesys
           std::fprintf(f, ", \\\n     NaN with lines dt 2 lw 1.5 lc rgb '#555555' title 'reference ε'");
         std::fprintf(f, "\n");
       },
-      {png}, "the bench's speed-against-error plot", /*keepScript=*/true);
+      {"speed_error.png"}, "the bench's speed-against-error plot", "speed_error.gp");
 }
 
 }  // namespace tallow::app

@@ -47,9 +47,10 @@ struct ReferenceLine {
   std::string label;   ///< "reference ε" and, with several references, their settings
 };
 
-/// Writes the gnuplot script `script` (kept, to redraw by hand) and draws `png` through gnuplot
-/// (app/commands/gnuplot.h: nothing without gnuplot; std::runtime_error when it fails).
-void writeSpeedErrorPlot(const std::filesystem::path& script, const std::filesystem::path& png, const std::string& title,
+/// Draws `folder`/speed_error.png through gnuplot and keeps its script, speed_error.gp (the data
+/// inline), to redraw it by hand in that folder (app/commands/gnuplot.h: nothing without gnuplot;
+/// std::runtime_error when it fails).
+void writeSpeedErrorPlot(const std::filesystem::path& folder, const std::string& title,
                          const std::vector<SpeedErrorPoint>& points, const std::vector<ReferenceLine>& references);
 
 }  // namespace tallow::app

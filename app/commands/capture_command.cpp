@@ -11,6 +11,8 @@
 #include "app/commands/progress.h"
 #include "app/commands/reference_command.h"
 #include "app/commands/option_checks.h"
+#include "app/commands/output_folder.h"
+#include "app/commands/stats_writer.h"
 #include "app/commands/video_encoder.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
@@ -43,6 +45,10 @@ void addTimings(sss::FrameTimings& total, const sss::FrameTimings& more) {
   total.gpuTotalMs += more.gpuTotalMs;
   total.cpuTotalMs += more.cpuTotalMs;
 }
+
+/// What a capture writes into its folder, which a rerun clears (OutputFolder::clearEarlierRun).
+const std::vector<std::string> kCaptureOutputs = {"frame_[0-9]*.png", "frame_[0-9]*.exr", "stats.json",
+                                                  "stats.frames.jsonl"};
 
 std::string frameName(int index, const char* extension) {
   char name[64];
@@ -104,10 +110,36 @@ nlohmann::json finalSummary(const sss::Renderer& renderer, const Config& config)
 
 }  // namespace
 
+namespace {
+
+/// Every frame's animation time within [0, kMaxTimeS], before any work: the clock is run through
+/// the frames with the script's commands applied to copies (a seek, a negative speed or a low --fps
+/// could take it out of range half-way through a run).
+void checkFrameTimes(const CaptureOptions& options, const Config& config, const Registry& registry,
+                     const std::optional<Script>& script) {
+  Config trial = config;
+  Playback clock(options.timeS.value_or(config.scene.startS), config.scene.durationS, config.scene.loop);
+  std::string cause = "--time + frame / --fps";
+  for (int i = 0; i < options.frames; ++i) {
+    clock.setFrame(i, options.fps);
+    if (script)
+      for (const ScriptCommand* c : script->at(i)) {
+        applyScriptCommand(*c, trial, registry, clock);
+        if (c->action == ScriptAction::Seek || c->action == ScriptAction::Speed) cause = c->where;
+      }
+    const double t = clock.rawTime();
+    if (!(t >= 0.0 && t <= kMaxTimeS))
+      throw InputError(cause + ": frame " + std::to_string(i) + " would be at t = " + formatNumber(t) +
+                       " s, out of range [0, " + formatNumber(kMaxTimeS) + "]");
+  }
+}
+
+}  // namespace
+
 int runCapture(const CaptureOptions& options) {
   if (options.outDir.empty()) throw InputError("capture: --out DIR is required");
   if (options.frames < 1) throw InputError("--frames: must be at least 1");
-  if (!(options.fps > 0.0)) throw InputError("--fps: must be positive");
+  checkFps("--fps", options.fps);
   if (options.timeS) checkTime("--time", *options.timeS);
   if (options.accumulate < 1 || options.accumulate > kMaxAccumulate)
     throw InputError("--accumulate: must be between 1 and " + std::to_string(kMaxAccumulate));
@@ -134,6 +166,7 @@ int runCapture(const CaptureOptions& options) {
         throw InputError(c.where + ": --reference: the script changes the image size, which the reference cannot");
     }
   }
+  checkFrameTimes(options, config, registry, script);
   if (!options.video.empty()) {
     checkVideoOutput(options.video);
     checkOutputFile("--video", options.video);
@@ -144,6 +177,9 @@ int runCapture(const CaptureOptions& options) {
   std::optional<ReferenceImages> reference;
   if (!options.reference.empty())
     reference = readReferencePair(options.reference, config.render.width, config.render.height, "the capture");
+
+  // The folder is this run's from here on: a second run into it refuses (output_folder.h).
+  OutputFolder folder(out, "capture");
 
   gpu::ContextOptions contextOptions;
   contextOptions.backend = gpu::parseGlBackend(options.gl);
@@ -167,14 +203,15 @@ int runCapture(const CaptureOptions& options) {
   run.state = "running";
   if (options.scene.explain) std::fputs(sss::formatPlan(run.plan).c_str(), stdout);
 
-  // Each frame is written when it is done (PNG, EXR, the video's next frame, stats.json listing it),
-  // so memory does not grow with --frames and a stopped run keeps every frame it finished. Only
-  // the frame before is kept, for the receivers' frame-to-frame change.
+  // Each frame is written when it is done (PNG, EXR, the video's next frame, its line in
+  // stats.frames.jsonl), so memory does not grow with --frames and a stopped run keeps every frame it
+  // finished. Only the frame before is kept, for the receivers' frame-to-frame change.
   const InterruptScope interruptScope;
   Progress progress("capture", "frame", options.frames);
   std::unique_ptr<VideoEncoder> video;
   std::optional<gpu::Image> previous;
-  const auto writeStats = [&] { gpu::writeTextFileAtomically(out / "stats.json", toJson(run).dump(2) + "\n"); };
+  StatsWriter stats(out / "stats.json");
+  int undefinedErrors = 0;  // frames whose error against --reference is undefined (NaN or infinite pixels)
   // Frame i is at start + i / fps unless a script pauses, seeks or changes the speed (no wrapping:
   // a capture past the animation's end shows the time it asks for).
   Playback playback(options.timeS.value_or(config.scene.startS), config.scene.durationS, config.scene.loop);
@@ -229,6 +266,8 @@ int runCapture(const CaptureOptions& options) {
         std::fprintf(stderr,
                      "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
                      i, census.nonFinite);
+      // A script that resizes the image starts the frame-to-frame change afresh (null at the resize).
+      if (previous && (previous->width != image.width || previous->height != image.height)) previous.reset();
       if (previous) {
         // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame;
         // and of the translucent objects themselves (issue 17, point 3).
@@ -239,9 +278,17 @@ int runCapture(const CaptureOptions& options) {
         if (any(receivers)) frame.receiverChange = gpu::relativeChange(image, *previous, receivers);
         if (any(translucent)) frame.translucentChange = gpu::relativeChange(image, *previous, translucent);
       }
-      if (reference) frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);
+      if (reference) {
+        frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);
+        if (frame.reference["rel_rmse"].is_null() && frame.reference["non_finite"]["image"].get<std::size_t>() > 0) {
+          ++undefinedErrors;
+          std::fprintf(stderr, "tallow: frame %d: its error against %s is undefined (NaN or infinite pixels)\n", i,
+                       options.reference.c_str());
+        }
+      }
 
-      if (i == 0) std::filesystem::create_directories(out);
+      // The earlier run's outputs go when this one has its first frame to write (docs/commands.md).
+      if (i == 0) folder.clearEarlierRun(kCaptureOutputs);
       gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);
       const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
       if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
@@ -255,10 +302,9 @@ int runCapture(const CaptureOptions& options) {
         video->add(gpu::toneMappedRgb8(image, config.render.toneMap));
       }
       frame.rssBytes = residentBytes();
-      run.frames.push_back(std::move(frame));
       previous = std::move(image);
       if (i + 1 == options.frames) run.state = "complete";
-      writeStats();
+      stats.append(run, frame);
       progress.update(i + 1);
     }
     progress.finish();
@@ -271,26 +317,26 @@ int runCapture(const CaptureOptions& options) {
     // What was written stays (each file whole); stats.json says where and why the run stopped.
     progress.finish();
     video.reset();  // no partial video
-    if (!run.frames.empty()) {
+    if (run.framesWritten > 0) {
       run.state = "failed";
       run.stopReason = e.what();
       try {
-        writeStats();
+        stats.finish(run);
       } catch (const std::exception&) {
         // The error that stopped the run is the one to report.
       }
     }
     throw;
   }
-  if (run.frames.empty()) {  // stopped before the first frame was done: nothing to write
+  if (run.framesWritten == 0) {  // stopped before the first frame was done: nothing to write
     std::fprintf(stderr, "tallow: capture stopped (%s) before the first frame; nothing written\n", interruptName());
     return interruptExitCode();
   }
   run.gpuBytes = renderer.gpuBytes();
   run.triangles = renderer.triangleCount();  // after the frames: includes the last field extraction
   run.sss = finalSummary(renderer, config);
-  writeStats();
-  const int written = static_cast<int>(run.frames.size());
+  stats.finish(run);
+  const int written = run.framesWritten;
   if (interrupted()) {
     std::fprintf(stderr, "tallow: capture stopped by %s after %d of %d frame(s); wrote them to %s\n", interruptName(),
                  written, options.frames, out.string().c_str());
@@ -298,6 +344,12 @@ int runCapture(const CaptureOptions& options) {
   }
   std::printf("tallow: wrote %d frame(s) of %s (%dx%d, %s) to %s\n", written, loaded.presetName.c_str(), run.width,
               run.height, run.gl.renderer.c_str(), out.string().c_str());
+  if (undefinedErrors > 0) {
+    // A comparison that cannot be made fails, rather than pass as a perfect match.
+    std::fprintf(stderr, "tallow: capture: %d frame(s) have NaN or infinite pixels: their error against %s is undefined\n",
+                 undefinedErrors, options.reference.c_str());
+    return 1;
+  }
   return 0;
 }
 

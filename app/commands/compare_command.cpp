@@ -18,11 +18,12 @@
 namespace tallow::app {
 namespace {
 
-gpu::Image readInput(const std::string& file, const char* what) {
+/// The EXR reader's messages start with the file's name: an option's name goes before it, no more.
+gpu::Image readInput(const std::string& file, const std::string& option = "") {
   try {
     return gpu::readExr(file);
   } catch (const std::exception& e) {
-    throw InputError(std::string(what) + ": " + e.what());
+    throw InputError(option.empty() ? std::string(e.what()) : option + ": " + e.what());
   }
 }
 
@@ -35,11 +36,15 @@ int runCompare(const CompareOptions& o) {
   if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
     throw InputError("--out: expected a .png file, got \"" + o.out + "\"");
   if (!o.json.empty()) checkOutputFile("--json", o.json, {".json"});
+  if (!o.out.empty()) {
+    checkOutputFile("--out", o.out, {".png"});
+    if (!gnuplotAvailable()) throw InputError("compare: gnuplot is not installed (apt-get install gnuplot-nox)");
+  }
   if (o.captions.size() > 2) throw InputError("--caption: give at most two, for A and B");
   if (!(o.scale >= 0.0) || !std::isfinite(o.scale)) throw InputError("--scale: must be a positive fraction (0: automatic)");
   if (!std::isfinite(o.exposureEv) || std::abs(o.exposureEv) > 20.0) throw InputError("--exposure-ev: must be in [-20, 20]");
-  const gpu::Image a = readInput(o.a, o.a.c_str());
-  const gpu::Image b = readInput(o.b, o.b.c_str());
+  const gpu::Image a = readInput(o.a);
+  const gpu::Image b = readInput(o.b);
   if (a.width != b.width || a.height != b.height)
     throw InputError("compare: " + o.a + " is " + sizeText(a) + " but " + o.b + " is " + sizeText(b));
   std::optional<gpu::Image> mask;
@@ -48,21 +53,32 @@ int runCompare(const CompareOptions& o) {
     if (mask->width != a.width || mask->height != a.height)
       throw InputError("--mask: " + o.mask + " is " + sizeText(*mask) + ", the images " + sizeText(a));
   }
+  // Without a mask every pixel counts (alpha 1 everywhere).
+  gpu::Image all = a;
+  for (glm::vec4& p : all.pixels) p = glm::vec4(1.0f);
+  const gpu::Image& pixels = mask ? *mask : all;
+  if (gpu::objectPixels(pixels) == 0) throw InputError("--mask: " + o.mask + " marks no pixel (alpha >= 0.5)");
+  // A NaN or infinite pixel makes the error undefined: refused, or left out and said so.
+  const std::size_t badA = gpu::nonFinitePixels(a, &pixels), badB = gpu::nonFinitePixels(b, &pixels);
+  if (badA + badB > 0) {
+    std::string which;
+    if (badA) which = o.a + " has " + std::to_string(badA);
+    if (badB) which += (badA ? ", " : "") + o.b + " has " + std::to_string(badB);
+    if (!o.ignoreNonFinite)
+      throw InputError("compare: " + which + " NaN or infinite pixel(s) among those compared, so the error is "
+                       "undefined (--ignore-non-finite leaves them out)");
+    std::fprintf(stderr, "tallow: compare: left out the NaN or infinite pixels (%s)\n", which.c_str());
+  }
+  gpu::ImageErrorOptions errorOptions;
+  errorOptions.skipNonFinite = o.ignoreNonFinite;
   if (!o.json.empty()) {
-    // Without a mask every pixel counts (alpha 1 everywhere).
-    gpu::Image all = a;
-    for (glm::vec4& p : all.pixels) p = glm::vec4(1.0f);
-    const gpu::Image& pixels = mask ? *mask : all;
-    if (gpu::objectPixels(pixels) == 0) throw InputError("--mask: " + o.mask + " marks no pixel (alpha >= 0.5)");
     const nlohmann::json record{{"a", o.a}, {"b", o.b}, {"mask", o.mask.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.mask)},
-                                {"error", referenceErrorRecord(a, b, pixels)}};
+                                {"error", referenceErrorRecord(a, b, pixels, errorOptions)}};
     gpu::writeTextFileAtomically(o.json, record.dump(2) + "\n");
     std::printf("tallow: wrote %s\n", o.json.c_str());
   }
   if (o.out.empty()) return 0;
   const std::filesystem::path out(o.out);
-  checkOutputFile("--out", out, {".png"});
-  if (!gnuplotAvailable()) throw InputError("compare: gnuplot is not installed (apt-get install gnuplot-nox)");
 
   FigureSpec spec;
   spec.title = o.title;

@@ -19,11 +19,15 @@ struct CompareOptions {
   double scale = 0.0;       ///< top of the colour scale as a fraction; 0: automatic
   std::string out;          ///< FIG.png (empty: no figure; then json is needed)
   std::string json;         ///< ERR.json (empty: none)
+  /// --ignore-non-finite: leave out the compared pixels where A or B is NaN or infinite (counted and
+  /// printed); without it such pixels make the comparison fail (the error is undefined).
+  bool ignoreNonFinite = false;
 };
 
 /// Returns the exit code; throws InputError with one line on bad input (unreadable or mismatched
 /// images, neither --out nor --json, gnuplot missing for --out, a bad --scale, a mask with no
-/// pixel), std::runtime_error when gnuplot fails.
+/// pixel, NaN or infinite pixels compared without --ignore-non-finite), std::runtime_error when
+/// gnuplot fails. Nothing is written on a failure.
 int runCompare(const CompareOptions& options);
 
 }  // namespace tallow::app

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 
 #include "app/commands/gnuplot.h"
@@ -104,40 +103,29 @@ bool writeComparisonFigure(const std::filesystem::path& png, const FigureSpec& s
   const int width = 2 * kMargin + columns * panelW + (columns - 1) * kGap + (rows == 2 ? kColourBar : 0);
   const int height = kTitle + rows * (panelH + kCaption) + (rows - 1) * kGap + kMargin;
 
-  // The pixels, as raw files gnuplot reads (removed with the PendingFiles, never renamed).
+  // The pixels, as raw files gnuplot reads from the run's private folder (removed with it).
   const std::filesystem::path folder = png.has_parent_path() ? png.parent_path() : std::filesystem::path(".");
-  std::vector<std::unique_ptr<gpu::PendingFile>> data;
-  // Hidden names built piece by piece: `"." + std::string&&` trips GCC 12's false -Wrestrict (bug 105651).
-  const auto hidden = [&](const std::string& suffix) {
-    std::string name = ".";
-    name += png.stem().string();
-    name += suffix;
-    return folder / name;
-  };
-  const auto dataFile = [&](const std::string& name) -> const std::filesystem::path& {
-    data.push_back(std::make_unique<gpu::PendingFile>(hidden("-" + name)));
-    return data.back()->temporary();
-  };
-  std::vector<std::filesystem::path> imageFiles, differenceFiles;
+  GnuplotRun run(folder);
+  std::vector<std::string> imageFiles, differenceFiles;
   for (std::size_t i = 0; i < spec.images.size(); ++i) {
     const std::vector<std::uint8_t> rgb = gpu::toneMappedRgb8(*spec.images[i].image, spec.toneMap);
-    imageFiles.push_back(dataFile("image" + std::to_string(i)));
-    writeBytes(imageFiles.back(), rgb.data(), rgb.size());
+    const std::string name = "image" + std::to_string(i) + ".rgb";
+    writeBytes(run.dataPath(name), rgb.data(), rgb.size());
+    imageFiles.push_back(run.dataLiteral(name));
   }
   for (std::size_t i = 0; i < differences.size(); ++i) {
-    differenceFiles.push_back(dataFile("difference" + std::to_string(i)));
-    writeBytes(differenceFiles.back(), differences[i].data(), differences[i].size() * sizeof(float));
+    const std::string name = "difference" + std::to_string(i) + ".f32";
+    writeBytes(run.dataPath(name), differences[i].data(), differences[i].size() * sizeof(float));
+    differenceFiles.push_back(run.dataLiteral(name));
   }
 
   const auto sx = [&](double px) { return px / width; };
   const auto sy = [&](double py) { return 1.0 - py / height; };  // py from the top
   const auto panelX = [&](int column) { return kMargin + column * (panelW + kGap); };
   const auto panelTop = [&](int row) { return kTitle + row * (panelH + kCaption + kGap) + kCaption; };
-  runGnuplot(
-      hidden(".gp"),
-      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
-        std::fprintf(f, "set terminal pngcairo size %d,%d font ',10'\nset output %s\n", width, height,
-                     gnuplotString(tmp[0].string()).c_str());
+  run.draw(
+      [&](std::FILE* f, const std::vector<std::string>& output) {
+        std::fprintf(f, "set terminal pngcairo size %d,%d font ',10'\nset output %s\n", width, height, output[0].c_str());
         std::fprintf(f, "%s", kPalette);
         std::fprintf(f, "set termoption noenhanced\n");  // captions are text: "sss.maps_4" has no subscript
         std::fprintf(f, "set multiplot title %s font ',12'\n", gnuplotString(spec.title).c_str());
@@ -152,7 +140,7 @@ bool writeComparisonFigure(const std::filesystem::path& png, const FigureSpec& s
           place(static_cast<int>(i), 0);
           std::fprintf(f, "set title %s offset 0,-0.6\nunset colorbox\n", gnuplotString(spec.images[i].caption).c_str());
           std::fprintf(f, "plot %s binary array=(%d,%d) format='%%uchar%%uchar%%uchar' flipy with rgbimage\n",
-                       gnuplotString(imageFiles[i].string()).c_str(), w, h);
+                       imageFiles[i].c_str(), w, h);
         }
         if (!differences.empty()) {
           std::fprintf(f, "set cbrange [0:%.9g]\n", topPercent);
@@ -172,12 +160,12 @@ bool writeComparisonFigure(const std::filesystem::path& png, const FigureSpec& s
             std::fprintf(f, "set title %s offset 0,-0.6\n", gnuplotString(spec.differences[i].caption).c_str());
             if (i > 0) std::fprintf(f, "unset colorbox\n");
             std::fprintf(f, "plot %s binary array=(%d,%d) format='%%float' flipy with image\n",
-                         gnuplotString(differenceFiles[i].string()).c_str(), w, h);
+                         differenceFiles[i].c_str(), w, h);
           }
         }
         std::fprintf(f, "unset multiplot\n");
       },
-      {png}, "the comparison figure " + png.filename().string());
+      {png.filename().string()}, "the comparison figure " + png.filename().string());
   return true;
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/commands/frame_stats.h"
 #include "app/commands/provenance.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "gpu/atomic_file.h"
 #include "gpu/gl_context.h"
@@ -70,6 +71,7 @@ double percentile(std::vector<double> v, double p) {
 
 int runProbeCost(const ProbeCostOptions& o) {
   if (o.out.empty()) throw InputError("probe cost: --out FILE.json is required");
+  checkOutputFile("--out", o.out, {".json"});  // before the work, not after it
   if (o.count < 100 || o.count > 100000000) throw InputError("--count: must be in [100, 1e8]");
   if (o.repeats < 1 || o.repeats > 100) throw InputError("--repeats: must be in [1, 100]");
   std::unique_ptr<gpu::GlContext> context;

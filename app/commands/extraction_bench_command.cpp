@@ -10,6 +10,7 @@
 #include "app/commands/frame_stats.h"
 #include "app/commands/provenance.h"
 #include "app/commands/progress.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
@@ -51,6 +52,7 @@ nlohmann::json ratio(const nlohmann::json& rows, const char* key) {
 
 int runProbeExtraction(const ProbeExtractionOptions& o) {
   if (o.out.empty()) throw InputError("probe extraction: --out FILE.json is required");
+  checkOutputFile("--out", o.out, {".json"});  // before the work, not after it
   if (o.fields.empty()) throw InputError("--fields: give at least one of blob, candle");
   for (const auto& f : o.fields)
     if (f != "blob" && f != "candle") throw InputError("--fields: unknown field \"" + f + "\" (expected blob or candle)");

@@ -89,73 +89,101 @@ nlohmann::json firefliesNotInReference(const std::vector<gpu::Firefly>& ours, co
 
 }  // namespace
 
-nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError) {
-  const gpu::ImageError e = gpu::imageError(image, reference, standardError);
-  const std::optional<gpu::HalvesError> halves = gpu::imageErrorByHalf(image, reference, standardError);
+nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError,
+                                    const gpu::ImageErrorOptions& options) {
+  const gpu::ImageError e = gpu::imageError(image, reference, standardError, options);
+  const std::optional<gpu::HalvesError> halves = gpu::imageErrorByHalf(image, reference, standardError, options);
   const std::vector<gpu::Firefly> ours = gpu::fireflies(image, standardError);
   const std::vector<gpu::Firefly> theirs = gpu::fireflies(reference, standardError);
-  return {{"rel_rmse", e.relRmse},
-          {"mean_ratio", e.meanRatio},
-          {"upper_mean_ratio", halves ? nlohmann::json(halves->upper.meanRatio) : nlohmann::json(nullptr)},
-          {"lower_mean_ratio", halves ? nlohmann::json(halves->lower.meanRatio) : nlohmann::json(nullptr)},
+  return {{"rel_rmse", finiteOrNull(e.relRmse)},
+          {"mean_ratio", finiteOrNull(e.meanRatio)},
+          {"upper_mean_ratio", halves ? finiteOrNull(halves->upper.meanRatio) : nlohmann::json(nullptr)},
+          {"lower_mean_ratio", halves ? finiteOrNull(halves->lower.meanRatio) : nlohmann::json(nullptr)},
+          {"non_finite", {{"image", e.nonFiniteImage}, {"reference", e.nonFiniteReference}, {"left_out", e.skippedNonFinite}}},
           {"fireflies", ours.size()},
           {"reference_fireflies", theirs.size()},
           {"fireflies_not_in_reference", firefliesNotInReference(ours, theirs, image, reference, standardError)},
           {"pixels", e.pixels}};
 }
 
-nlohmann::json toJson(const RunRecord& run) {
+nlohmann::json frameJson(const FrameRecord& f) {
   using nlohmann::json;
-  json frames = json::array();
-  std::vector<double> wall;
-  std::map<std::string, std::vector<double>> perPass, perPassCpu, perPassThread;
-  std::vector<double> gpuTotal, cpuTotal, threadTotal, changes;
-  // A GPU time not read (NaN) is null, and left out of the medians.
-  const auto number = &finiteOrNull;
-  for (const FrameRecord& f : run.frames) {
-    json passes = json::object(), cpu = json::object(), thread = json::object();
-    for (const auto& p : f.gpu.passes) {
-      passes[p.name] = number(p.gpuMs);
-      cpu[p.name] = p.cpuMs;
-      thread[p.name] = p.threadCpuMs;
-      if (std::isfinite(p.gpuMs)) perPass[p.name].push_back(p.gpuMs);
-      perPassCpu[p.name].push_back(p.cpuMs);
-      perPassThread[p.name].push_back(p.threadCpuMs);
-    }
-    frames.push_back({{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
-                      {"gpu_ms", passes}, {"gpu_total_ms", number(f.gpu.gpuTotalMs)},
-                      {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
-                      {"thread_cpu_ms", thread}, {"thread_cpu_total_ms", f.gpu.threadCpuTotalMs},
-                      {"receiver_change", number(f.receiverChange)},
-                      {"translucent_change", number(f.translucentChange)},
-                      {"reference_error", f.reference},
-                      {"point_lights", [&] {
-                         json lights = json::array();
-                         for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
-                         return lights;
-                       }()},
-                      {"changed", f.changed},
-                      {"sss", f.sss},
-                      {"rss_bytes", f.rssBytes},
-                      {"pixels", f.pixels}});
-    if (!f.view.is_null()) frames.back()["view"] = f.view;
-    if (std::isfinite(f.receiverChange)) changes.push_back(f.receiverChange);
-    wall.push_back(f.wallMs);
-    if (f.gpu.gpuKnown()) gpuTotal.push_back(f.gpu.gpuTotalMs);
-    cpuTotal.push_back(f.gpu.cpuTotalMs);
-    threadTotal.push_back(f.gpu.threadCpuTotalMs);
+  json passes = json::object(), cpu = json::object(), thread = json::object();
+  for (const auto& p : f.gpu.passes) {
+    passes[p.name] = finiteOrNull(p.gpuMs);  // a GPU time not read (NaN) is null
+    cpu[p.name] = p.cpuMs;
+    thread[p.name] = p.threadCpuMs;
   }
-  json passMedians = json::object(), cpuMedians = json::object(), threadMedians = json::object();
-  for (auto& [name, values] : perPass) passMedians[name] = median(values);
-  for (auto& [name, values] : perPassCpu) cpuMedians[name] = median(values);
-  for (auto& [name, values] : perPassThread) threadMedians[name] = median(values);
+  json lights = json::array();
+  for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
+  json frame = {{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
+                {"gpu_ms", passes}, {"gpu_total_ms", finiteOrNull(f.gpu.gpuTotalMs)},
+                {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
+                {"thread_cpu_ms", thread}, {"thread_cpu_total_ms", f.gpu.threadCpuTotalMs},
+                {"receiver_change", finiteOrNull(f.receiverChange)},
+                {"translucent_change", finiteOrNull(f.translucentChange)},
+                {"reference_error", f.reference},
+                {"point_lights", lights},
+                {"changed", f.changed},
+                {"sss", f.sss},
+                {"rss_bytes", f.rssBytes},
+                {"pixels", f.pixels}};
+  if (!f.view.is_null()) frame["view"] = f.view;
+  return frame;
+}
+
+namespace {
+/// The medians of a map of named series.
+nlohmann::json medians(std::map<std::string, std::vector<double>>& series) {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto& [name, values] : series) out[name] = median(std::move(values));
+  return out;
+}
+}  // namespace
+
+void FrameSummary::add(const nlohmann::json& frame) {
+  ++frames_;
+  const auto number = [](const nlohmann::json& v, std::vector<double>& into) {
+    if (v.is_number()) into.push_back(v.get<double>());  // null (not read, or not finite) is left out
+  };
+  number(frame.value("wall_ms", nlohmann::json()), wall_);
+  number(frame.value("gpu_total_ms", nlohmann::json()), gpuTotal_);
+  number(frame.value("cpu_total_ms", nlohmann::json()), cpuTotal_);
+  number(frame.value("thread_cpu_total_ms", nlohmann::json()), threadTotal_);
+  number(frame.value("receiver_change", nlohmann::json()), changes_);
+  const auto perPass = [&](const char* key, std::map<std::string, std::vector<double>>& into) {
+    if (const auto it = frame.find(key); it != frame.end() && it->is_object())
+      for (const auto& [name, value] : it->items()) number(value, into[name]);
+  };
+  perPass("gpu_ms", perPass_);
+  perPass("cpu_ms", perPassCpu_);
+  perPass("thread_cpu_ms", perPassThread_);
+}
+
+nlohmann::json FrameSummary::json() {
+  using nlohmann::json;
+  return {{"frames", frames_},
+          {"wall_ms_median", median(wall_)},
+          {"gpu_total_ms_median", gpuTotal_.empty() ? json(nullptr) : json(median(gpuTotal_))},
+          {"gpu_ms_median", medians(perPass_)},
+          {"cpu_total_ms_median", median(cpuTotal_)},
+          {"cpu_ms_median", medians(perPassCpu_)},
+          {"thread_cpu_total_ms_median", median(threadTotal_)},
+          {"thread_cpu_ms_median", medians(perPassThread_)},
+          {"receiver_change_mean",
+           changes_.empty() ? json(nullptr)
+                            : json(std::accumulate(changes_.begin(), changes_.end(), 0.0) / double(changes_.size()))}};
+}
+
+nlohmann::json runJson(const RunRecord& run) {
+  using nlohmann::json;
   json plan = json::array();
   for (const auto& p : run.plan)
     plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
   const json gl = glJson(run.backend, run.gl);
   json provenance = provenanceJson();
   provenance["gl"] = gl;
-  json state = {{"state", run.state}, {"frames_requested", run.framesRequested}, {"frames_written", run.frames.size()}};
+  json state = {{"state", run.state}, {"frames_requested", run.framesRequested}, {"frames_written", run.framesWritten}};
   if (!run.stopReason.empty()) state["stop_reason"] = run.stopReason;
   return {
       {"command", run.command},
@@ -168,18 +196,6 @@ nlohmann::json toJson(const RunRecord& run) {
       {"triangles", run.triangles},
       {"gpu_memory_bytes", run.gpuBytes},
       {"plan", plan},
-      {"frames", frames},
-      {"summary",
-       {{"frames", run.frames.size()},
-        {"wall_ms_median", median(wall)},
-        {"gpu_total_ms_median", gpuTotal.empty() ? json(nullptr) : json(median(gpuTotal))},
-        {"gpu_ms_median", passMedians},
-        {"cpu_total_ms_median", median(cpuTotal)},
-        {"cpu_ms_median", cpuMedians},
-        {"thread_cpu_total_ms_median", median(threadTotal)},
-        {"thread_cpu_ms_median", threadMedians},
-        {"receiver_change_mean",
-         changes.empty() ? json(nullptr) : json(std::accumulate(changes.begin(), changes.end(), 0.0) / double(changes.size()))}}},
       {"parameters", run.parameters},
       {"sss", run.sss},
   };

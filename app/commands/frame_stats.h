@@ -1,14 +1,17 @@
 #pragma once
 // stats.json: what ran, on which GL, how long each pass took, and every parameter's value; where it
-// came from (provenance.h) and whether the run is complete (capture rewrites it after every frame).
+// came from (provenance.h) and whether the run is complete. The JSON of one frame, of the run and of
+// the frames' summary; app/commands/stats_writer.h writes them as the run goes.
 #include <nlohmann/json.hpp>
 
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "app/config/config.h"
 #include "gpu/gl_context.h"
+#include "gpu/image_error.h"
 #include "gpu/image_io.h"
 #include "sss/renderer.h"
 
@@ -47,8 +50,11 @@ std::size_t residentBytes();
 /// and "reference_fireflies" (gpu::fireflyCount of the image and of the reference),
 /// "fireflies_not_in_reference" (the image's fireflies at pixels where the reference has none, at most
 /// 32: {"x", "y", "channel", "over_median": the channel over its 5×5 median, "reference_over_median":
-/// the reference's own ratio there, "over_reference": image / reference in that channel}), "pixels"}.
-nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError);
+/// the reference's own ratio there, "over_reference": image / reference in that channel}), "pixels",
+/// "non_finite": {"image", "reference": object pixels with a NaN or infinite channel, "left_out": those
+/// not compared (with options.skipNonFinite)}}. With non-finite pixels compared the errors are null.
+nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& reference, const gpu::Image& standardError,
+                                    const gpu::ImageErrorOptions& options = {});
 
 
 /// stats.json's per-frame "pixels": {"non_finite": NaN or ±Inf pixels, "beyond_half": finite
@@ -76,18 +82,37 @@ struct RunRecord {
   std::size_t triangles = 0;
   std::size_t gpuBytes = 0;
   std::vector<sss::PlannedPass> plan;
-  std::vector<FrameRecord> frames;
+  int framesWritten = 0;  ///< the frames recorded so far (StatsWriter counts them)
   int accumulate = 1;  ///< renders per frame at its time (capture --accumulate); timings sum them
   nlohmann::json parameters;
   nlohmann::json sss;  ///< radiosity maps of the last frame (null when the method does not run)
   int framesRequested = 0;  ///< frames asked for (capture --frames; view --frames, 0: until closed)
-  /// "running" (frames remain: capture rewrites stats.json after each), "complete", "interrupted"
-  /// (SIGINT or SIGTERM; the frames listed are written whole) or "failed" (stopReason says why).
+  /// "running" (frames remain), "complete", "interrupted" (SIGINT, SIGTERM or SIGHUP; the frames
+  /// listed are written whole) or "failed" (stopReason says why).
   std::string state = "complete";
   std::string stopReason;  ///< interrupted: the signal's name; failed: the error's line
 };
 
 double median(std::vector<double> values);
-nlohmann::json toJson(const RunRecord& run);
+
+/// One entry of stats.json's "frames" (a line of the run's frames.jsonl while it runs).
+nlohmann::json frameJson(const FrameRecord& frame);
+
+/// stats.json without its "frames" and "summary": the command, its state, provenance, GL, the plan,
+/// the parameters and the maps.
+nlohmann::json runJson(const RunRecord& run);
+
+/// stats.json's "summary", built from the frames' JSON one at a time (medians of the wall, GPU, CPU
+/// and thread times, in total and per pass; the receivers' mean change).
+class FrameSummary {
+ public:
+  void add(const nlohmann::json& frame);
+  nlohmann::json json();
+
+ private:
+  std::size_t frames_ = 0;
+  std::vector<double> wall_, gpuTotal_, cpuTotal_, threadTotal_, changes_;
+  std::map<std::string, std::vector<double>> perPass_, perPassCpu_, perPassThread_;
+};
 
 }  // namespace tallow::app

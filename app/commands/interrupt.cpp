@@ -13,7 +13,8 @@ volatile std::sig_atomic_t gSignal = 0;
 // Written from the handler with write(2), the async-signal-safe way to say something.
 constexpr char kNotice[] =
     "\ntallow: stopping: finishing the step in hand and writing what is done (again to stop at once)\n";
-constexpr int kSignals[] = {SIGINT, SIGTERM};
+// SIGHUP: the terminal went away (a dropped ssh session); the run ends as it would on SIGTERM.
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
 void onSignal(int signal) {
   if (gSignal == 0) {
@@ -28,6 +29,7 @@ void onSignal(int signal) {
 }
 
 struct sigaction gPrevious[std::size(kSignals)];
+struct sigaction gPreviousSigpipe;
 
 }  // namespace
 
@@ -39,10 +41,16 @@ InterruptScope::InterruptScope() {
   // Interrupted reads and writes resume: the flag is looked at between steps, not by every call.
   action.sa_flags = SA_RESTART;
   for (std::size_t i = 0; i < std::size(kSignals); ++i) sigaction(kSignals[i], &action, &gPrevious[i]);
+  // With the terminal gone (SIGHUP), a progress line written into a pipe whose reader died must fail
+  // with EPIPE, not end the run before it wrote what it has.
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &ignore, &gPreviousSigpipe);
 }
 
 InterruptScope::~InterruptScope() {
   for (std::size_t i = 0; i < std::size(kSignals); ++i) sigaction(kSignals[i], &gPrevious[i], nullptr);
+  sigaction(SIGPIPE, &gPreviousSigpipe, nullptr);
 }
 
 int interruptSignal() { return gSignal; }
@@ -55,6 +63,8 @@ const char* interruptName() {
       return "SIGINT";
     case SIGTERM:
       return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
     case 0:
       return "";
     default:

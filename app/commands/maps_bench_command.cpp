@@ -11,6 +11,7 @@
 #include "app/commands/frame_stats.h"
 #include "app/commands/provenance.h"
 #include "app/commands/progress.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
 #include "gpu/atomic_file.h"
@@ -103,6 +104,7 @@ PlaneFit fitPlane(const std::vector<double>& x1, const std::vector<double>& x2, 
 
 int runProbeMaps(const ProbeMapsOptions& o) {
   if (o.out.empty()) throw InputError("probe maps: --out FILE.json is required");
+  checkOutputFile("--out", o.out, {".json"});  // before the work, not after it
   if (o.maps.empty()) throw InputError("--k: give at least one number of maps");
   if (o.samples.empty()) throw InputError("--n: give at least one number of samples");
   for (int k : o.maps)

@@ -10,6 +10,7 @@
 
 #include "app/config/input_error.h"
 #include "app/config/params.h"
+#include "gpu/utf8.h"
 
 namespace tallow::app {
 namespace fs = std::filesystem;
@@ -34,7 +35,38 @@ void removeCreated(const std::vector<fs::path>& created) {
 
 fs::path folderOf(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
 
+/// The longest file name and path the folder's file system takes (pathconf(3); 255 and 4096 where
+/// it does not say).
+std::pair<std::size_t, std::size_t> nameLimits(const fs::path& folder) {
+  const long name = ::pathconf(folder.c_str(), _PC_NAME_MAX), path = ::pathconf(folder.c_str(), _PC_PATH_MAX);
+  return {name > 0 ? static_cast<std::size_t>(name) : 255, path > 0 ? static_cast<std::size_t>(path) : 4096};
+}
+
+/// The nearest folder above `p` (itself included) that exists, to ask its file system.
+fs::path existingFolder(fs::path p) {
+  std::error_code ec;
+  p = fs::absolute(p, ec);
+  while (!fs::is_directory(p, ec) && p.has_parent_path() && p.parent_path() != p) p = p.parent_path();
+  return p;
+}
+
 }  // namespace
+
+void checkOutputName(std::string_view option, const fs::path& path) {
+  const std::string opt(option), text = path.string();
+  if (const std::size_t bad = gpu::firstInvalidUtf8(text); bad != std::string::npos)
+    throw InputError(opt + ": " + quote(text) + " is not valid UTF-8 (byte " + std::to_string(bad + 1) +
+                     "): the run's JSON records every output's name");
+  const auto [maxName, maxPath] = nameLimits(existingFolder(folderOf(path)));
+  std::error_code ec;
+  if (fs::absolute(path, ec).string().size() >= maxPath)
+    throw InputError(opt + ": " + quote(text) + " is longer than the " + std::to_string(maxPath) +
+                     " bytes a path may have here");
+  for (const fs::path& part : path)
+    if (part.string().size() > maxName)
+      throw InputError(opt + ": the name " + quote(part.string()) + " is " + std::to_string(part.string().size()) +
+                       " bytes long; names here take at most " + std::to_string(maxName));
+}
 
 void checkTime(std::string_view option, double seconds) {
   if (!std::isfinite(seconds))
@@ -44,20 +76,32 @@ void checkTime(std::string_view option, double seconds) {
                      formatNumber(kMaxTimeS) + "] (animation time, as a preset's start_s)");
 }
 
+void checkFps(std::string_view option, double fps) {
+  if (!(fps >= kMinFps && fps <= kMaxFps))
+    throw InputError(std::string(option) + ": " + formatNumber(fps) + " is out of range [" + formatNumber(kMinFps) +
+                     ", " + formatNumber(kMaxFps) + "] frames per second");
+}
+
 void checkWritableFolder(const fs::path& dir, std::string_view option) {
   const std::string opt(option);
   if (dir.empty()) throw InputError(opt + ": empty folder name");
+  checkOutputName(option, dir);
   std::error_code ec;
   const fs::path target = fs::absolute(dir, ec);
   if (ec) throw InputError(opt + ": " + dir.string() + ": " + ec.message());
-  // The folders that do not exist yet, deepest first, and the nearest one that does.
+  // The folders that do not exist yet, deepest first, and the nearest one that does. A link is an
+  // entry that exists even when what it points to does not: it is never taken for a missing folder
+  // (and so never removed as one created here).
   std::vector<fs::path> missing;
   fs::path existing = target;
-  while (!fs::exists(existing, ec)) {
+  while (!fs::exists(fs::symlink_status(existing, ec))) {
     if (!existing.has_parent_path() || existing.parent_path() == existing) break;
     missing.push_back(existing);
     existing = existing.parent_path();
   }
+  if (fs::is_symlink(fs::symlink_status(existing, ec)) && !fs::exists(existing, ec))
+    throw InputError(opt + ": " + existing.string() + " is a symbolic link to " +
+                     fs::read_symlink(existing, ec).string() + ", which does not exist");
   if (fs::exists(existing, ec) && !fs::is_directory(existing, ec))
     throw InputError(opt + ": " + existing.string() + " is not a folder");
   fs::create_directories(target, ec);
@@ -73,6 +117,7 @@ void checkWritableFolder(const fs::path& dir, std::string_view option) {
 void checkOutputFile(std::string_view option, const fs::path& file, const std::vector<std::string>& extensions) {
   const std::string opt(option);
   if (file.empty()) throw InputError(opt + ": empty file name");
+  checkOutputName(option, file);
   if (!extensions.empty() &&
       std::find(extensions.begin(), extensions.end(), file.extension().string()) == extensions.end()) {
     std::string expected;

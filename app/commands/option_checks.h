@@ -18,14 +18,26 @@ inline constexpr double kMaxTimeS = 1e6;
 /// An animation time (--time): finite and within [0, kMaxTimeS] seconds, as a preset's start_s.
 void checkTime(std::string_view option, double seconds);
 
-/// An output folder (--out DIR of capture, bench, probe profile): its nearest existing ancestor
+/// The range of --fps (capture, view): below it one frame would step the clock past kMaxTimeS in
+/// a few frames; above it frames would be closer than a clock of doubles keeps apart over kMaxTimeS.
+inline constexpr double kMinFps = 1e-3, kMaxFps = 1e4;
+/// --fps within [kMinFps, kMaxFps].
+void checkFps(std::string_view option, double fps);
+
+/// An output's name (a file, a folder or a file written beside another, REF_stderr.exr): valid
+/// UTF-8 (it goes into the run's JSON), and no longer than the file system takes, each name and the
+/// whole path (pathconf(3)), so that no output of a pair fails after its partner was written.
+void checkOutputName(std::string_view option, const std::filesystem::path& path);
+
+/// An output folder (--out DIR of capture, bench, probe profile): checkOutputName; a link to a
+/// missing folder is refused (never removed); its nearest existing ancestor
 /// must be a folder in which the rest can be created and written. Tried for real — the missing
 /// folders are created and removed again, a probe file is created and removed — since access(2)
 /// answers yes to root on read-only or virtual file systems (/proc), whose refusal would otherwise
 /// come only when the outputs are written, after the rendering.
 void checkWritableFolder(const std::filesystem::path& dir, std::string_view option = "--out");
 
-/// An output file: its folder must exist and take a new file (tried, as above), the path must
+/// An output file: checkOutputName; its folder must exist and take a new file (tried, as above), the path must
 /// not be a folder, and with `extensions` given (".png", ".exr") its extension must be one of them.
 void checkOutputFile(std::string_view option, const std::filesystem::path& file,
                      const std::vector<std::string>& extensions = {});

@@ -16,6 +16,7 @@
 
 #include "app/commands/frame_stats.h"
 #include "app/commands/provenance.h"
+#include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "geometry/analytic_fields.h"
 #include "geometry/blob_field.h"
@@ -271,6 +272,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 int runProbePlacement(const ProbePlacementOptions& o) {
   if (o.out.empty()) throw InputError("probe placement: --out FILE.json is required");
+  checkOutputFile("--out", o.out, {".json"});  // before the work, not after it
   if (o.shapes.empty()) throw InputError("--shapes: give at least one of cube, candle, sphere, blob");
   for (const auto& s : o.shapes)
     if (s != "cube" && s != "candle" && s != "sphere" && s != "blob")

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/commands/gnuplot.h"
+#include "app/commands/output_folder.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/setup.h"
@@ -76,27 +77,25 @@ std::string number(double v) {
   return b;
 }
 
-void writePlots(const std::filesystem::path& out, const std::string& title, bool haveStdErr) {
-  runGnuplot(
-      out / ".profile.gp",
-      [&](std::FILE* f, const std::vector<std::filesystem::path>& tmp) {
+void writePlots(const std::filesystem::path& out, const std::string& title) {
+  GnuplotRun(out).draw(
+      [&](std::FILE* f, const std::vector<std::string>& output) {
         std::fprintf(f,
-                     "set output '%s'\n"
-                     "set title \"%s\" noenhanced\n"
+                     "set output %s\n"
+                     "set title %s noenhanced\n"
                      "set xlabel 'x [mm]'\nset ylabel 'R_d [mm^{-2}]'\nset logscale y\nset format y '10^{%%L}'\n"
                      "set key top right\nset grid\n"
-                     "plot '%s' using 1:($4==0 ? $2 : 1/0) with lines lw 2 lc rgb '#1f77b4' title 'R_d'%s, \\\n"
+                     "plot 'profile_x.csv' using 1:($4==0 ? $2 : 1/0) with lines lw 2 lc rgb '#1f77b4' title 'R_d', \\\n"
                      "     '' using 1:($4==1 ? -$2 : 1/0) with points pt 7 ps 0.6 lc rgb '#d62728' title '-R_d where negative'\n"
-                     "set output '%s'\n"
+                     "set output %s\n"
                      "unset logscale y\nset format y '%%g'\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
                      "set size ratio -1\nset view map\nset cblabel 'log_{10} R_d'\n"
                      "set palette defined (0 '#000004', 1 '#3b0f70', 2 '#8c2981', 3 '#de4968', 4 '#fe9f6d', 5 '#fcfdbf')\n"
-                     "plot '%s' using 1:2:($3 > 0 ? log10($3) : 1/0) with image notitle, \\\n"
+                     "plot 'profile_map.csv' using 1:2:($3 > 0 ? log10($3) : 1/0) with image notitle, \\\n"
                      "     '' using 1:($4 == 1 ? $2 : 1/0) with points pt 5 ps 0.3 lc rgb '#00ff00' title 'negative (raw S_d < 0)'\n",
-                     tmp[0].c_str(), title.c_str(), (out / "profile_x.csv").c_str(), haveStdErr ? "" : "", tmp[1].c_str(),
-                     (out / "profile_map.csv").c_str());
+                     output[0].c_str(), gnuplotString(title).c_str(), output[1].c_str());
       },
-      {out / "profile_x.png", out / "profile_map.png"}, "the profile plots");
+      {"profile_x.png", "profile_map.png"}, "the profile plots");
 }
 
 }  // namespace
@@ -127,6 +126,7 @@ int runProbeProfile(const ProbeProfileOptions& o) {
   }
   const std::filesystem::path out(o.out);
   checkWritableFolder(out);
+  OutputFolder folder(out, "probe profile");  // one run at a time into it (output_folder.h)
 
   const int n = o.bins;
   const double half = 0.5 * o.extentMm;
@@ -183,12 +183,12 @@ int runProbeProfile(const ProbeProfileOptions& o) {
         mapCsv += number(x) + "," + number(y) + "," + number(v.sd) + "," + (v.sd < 0.0 ? "1" : "0") + "\n";
       }
   }
-  std::filesystem::create_directories(out);
+  folder.clearEarlierRun({"profile_x.csv", "profile_map.csv", "profile_x.png", "profile_map.png"});
   gpu::writeTextFileAtomically(out / "profile_x.csv", xCsv);
   gpu::writeTextFileAtomically(out / "profile_map.csv", mapCsv);
   char title[256];
   std::snprintf(title, sizeof title, "%s, %s, theta %g deg", o.model.c_str(), medium.label.c_str(), o.thetaDeg);
-  if (o.plots) writePlots(out, title, mc);
+  if (o.plots) writePlots(out, title);
   if (!mc)
     std::printf("tallow: %s profile: %zu of %d map samples negative (raw S_d < 0)\n", o.model.c_str(), negatives, n * n);
   return 0;

@@ -13,6 +13,7 @@
 #include "app/commands/provenance.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
+#include "gpu/image_error.h"
 #include "gpu/image_io.h"
 #include "sss/bssrdf/bssrdf.h"
 #include "sss/field_objects.h"
@@ -102,11 +103,17 @@ std::filesystem::path emergentPath(const std::filesystem::path& out) { return be
 gpu::Image readReferenceImage(const std::filesystem::path& file, const std::string& option) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) throw InputError(option + ": " + file.string() + " does not exist");
+  gpu::Image image;
   try {
-    return gpu::readExr(file);
+    image = gpu::readExr(file);
   } catch (const std::exception& e) {
     throw InputError(option + ": " + e.what());
   }
+  // Every error against it would be undefined (and once read as 0: a false perfect match).
+  if (const std::size_t bad = gpu::nonFinitePixels(image))
+    throw InputError(option + ": " + file.string() + ": " + std::to_string(bad) +
+                     " pixel(s) are NaN or infinite; a reference must be finite");
+  return image;
 }
 
 gpu::Image readReferenceImage(const std::filesystem::path& file, int width, int height, const std::string& what,
@@ -153,8 +160,11 @@ sss::ReferenceResult computeReference(const ReferenceOptions& options, const sss
 int runReference(const ReferenceOptions& options) {
   validateReferenceOptions(options);
   const std::filesystem::path out(options.out);
-  // Written as OpenEXR whatever the name says, so the name must say it (REF_stderr.exr beside it too).
+  // Written as OpenEXR whatever the name says, so the name must say it (REF_stderr.exr beside it too,
+  // and REF_emergent.exr with --emergent: their names are checked now, not after the integration).
   checkOutputFile("--out", out, {".exr"});
+  checkOutputName("--out", standardErrorPath(out));
+  if (options.emergent > 0) checkOutputName("--out", emergentPath(out));
   const LoadedScene loaded = loadScene(options.scene);
   const sss::ReferenceSettings settings = referenceSettings(options, referenceFieldMeshes(options, loaded));
   const bool anyField = sss::FieldObjects::any(loaded.config.scene);
@@ -204,9 +214,11 @@ int runReference(const ReferenceOptions& options) {
                  "the mean and its error estimate are biased low until many passes have run; raise --points "
                  "(or leave it out to choose it automatically)\n",
                  r.nearFieldPoints);
-  gpu::writeExr(out, r.radiance, gpu::ExrPixelType::Float, attributes);
-  gpu::writeExr(standardErrorPath(out), r.standardError, gpu::ExrPixelType::Float, attributes);
-  if (r.emitterPoints > 0) gpu::writeExr(emergentPath(out), r.emergent, gpu::ExrPixelType::Float, attributes);
+  // The pair (or triple) whole or not at all: a reference without its standard error is unusable.
+  std::vector<gpu::ExrOutput> files = {{out, &r.radiance, gpu::ExrPixelType::Float, attributes},
+                                       {standardErrorPath(out), &r.standardError, gpu::ExrPixelType::Float, attributes}};
+  if (r.emitterPoints > 0) files.push_back({emergentPath(out), &r.emergent, gpu::ExrPixelType::Float, attributes});
+  gpu::writeExrFiles(files);
   std::printf("tallow: reference of %s (%dx%d): %d pass(es) x %d points, relative standard error %s, %.1f s -> %s\n",
               loaded.presetName.c_str(), r.radiance.width, r.radiance.height, r.passes, r.pointsPerPass,
               errorText(r.relError).c_str(), r.seconds, options.out.c_str());

@@ -2,19 +2,15 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
+#include "app/commands/subprocess.h"
 #include "app/config/input_error.h"
-
-extern char** environ;
 
 namespace tallow::app {
 
@@ -44,20 +40,6 @@ const Container* containerOf(const std::filesystem::path& file) {
   return nullptr;
 }
 
-bool executable(const std::filesystem::path& p) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0;
-}
-
-/// The last non-empty line of a text file (ffmpeg's error), or "".
-std::string lastLine(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
-
 /// Writes all of `data` to `fd`; false when the reader went away (EPIPE) or another error.
 bool writeAll(int fd, const std::uint8_t* data, std::size_t size) {
   while (size > 0) {
@@ -72,18 +54,7 @@ bool writeAll(int fd, const std::uint8_t* data, std::size_t size) {
 
 }  // namespace
 
-std::filesystem::path findFfmpeg() {
-  if (const char* env = std::getenv("TALLOW_FFMPEG"); env && *env) return executable(env) ? env : "";
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (dir.empty()) continue;
-    const std::filesystem::path candidate = std::filesystem::path(dir) / "ffmpeg";
-    if (executable(candidate)) return candidate;
-  }
-  return {};
-}
+std::filesystem::path findFfmpeg() { return findExecutable("ffmpeg", "TALLOW_FFMPEG"); }
 
 void checkVideoOutput(const std::filesystem::path& file) {
   if (!containerOf(file))
@@ -107,36 +78,27 @@ VideoEncoder::VideoEncoder(const std::filesystem::path& file, int width, int hei
                                    "-r", rate, "-i", "pipe:0",
                                    "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"};
   args.insert(args.end(), container.codec.begin(), container.codec.end());
-  args.insert(args.end(), {"-f", container.format, output_->temporary().string()});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  // "file:" so that ffmpeg takes the name as a local file whatever it looks like ("http:…", "pipe:…").
+  args.insert(args.end(), {"-f", container.format, "file:" + std::filesystem::absolute(output_->temporary()).string()});
+  args.erase(args.begin());  // argv[0]: spawnProgram puts the program's path there
 
   int pipeFds[2];
   if (::pipe2(pipeFds, O_CLOEXEC) != 0)
     throw std::runtime_error("cannot write " + file.string() + ": pipe: " + std::strerror(errno));
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipeFds[0], STDIN_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  // A process group of its own: the terminal's Ctrl-C goes to Tallow's group only, and Tallow ends
-  // the video itself, with the frames it has.
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  const int spawned = posix_spawn(&pid_, ffmpeg.c_str(), &actions, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(pipeFds[0]);
-  if (spawned != 0) {
+  SpawnOptions spawn;
+  spawn.stdinFd = pipeFds[0];
+  spawn.stderrFile = log_;
+  try {
+    pid_ = spawnProgram(ffmpeg, args, spawn);
+  } catch (const std::exception& e) {
+    ::close(pipeFds[0]);
     ::close(pipeFds[1]);
     pid_ = -1;
     std::error_code ec;
     std::filesystem::remove(log_, ec);
-    throw std::runtime_error("cannot write " + file.string() + ": cannot run " + ffmpeg + ": " + std::strerror(spawned));
+    throw std::runtime_error("cannot write " + file.string() + ": " + e.what());
   }
+  ::close(pipeFds[0]);
   pipe_ = pipeFds[1];
   // A dying ffmpeg must not kill us with SIGPIPE: the failed write is reported instead.
   struct sigaction ignore {};
@@ -153,8 +115,7 @@ int VideoEncoder::wait() {
   }
   pipe_ = -1;
   int status = 0;
-  while (pid_ > 0 && ::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-  }
+  if (pid_ > 0) status = waitProgram(pid_);
   pid_ = -1;
   return status;
 }
@@ -175,7 +136,7 @@ void VideoEncoder::add(std::span<const std::uint8_t> rgb) {
   if (fed_) fed_ = writeAll(pipe_, rgb.data(), rgb.size());
   if (!fed_) {  // ffmpeg stopped reading: its error says why
     const int status = wait();
-    const std::string error = lastLine(log_);
+    const std::string error = lastMessageLine(log_);
     abort();
     (void)status;
     throw std::runtime_error("cannot write " + file_.string() + ": ffmpeg failed" + (error.empty() ? "" : ": " + error));
@@ -185,7 +146,7 @@ void VideoEncoder::add(std::span<const std::uint8_t> rgb) {
 
 void VideoEncoder::finish() {
   const int status = wait();
-  const std::string error = lastLine(log_);
+  const std::string error = lastMessageLine(log_);
   std::error_code ec;
   std::filesystem::remove(log_, ec);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {

@@ -13,6 +13,7 @@
 #include "app/config/json_document.h"
 #include "app/config/params.h"
 #include "app/config/registry.h"
+#include "gpu/utf8.h"
 
 namespace tallow::app {
 
@@ -545,11 +546,17 @@ class PresetReader {
 
 fs::path resolvePresetName(std::string_view nameOrPath, const fs::path& presetDir) {
   const std::string text(nameOrPath);
+  // The preset's name goes into stats.json and bench.json, which must be UTF-8.
+  if (!gpu::validUtf8(text)) throw InputError("preset " + quote(text) + ": the name is not valid UTF-8");
   const bool isPath = text.find('/') != std::string::npos ||
                       (text.size() >= 5 && text.compare(text.size() - 5, 5, ".json") == 0);
   if (isPath) {
     std::error_code ec;
-    if (!fs::is_regular_file(text, ec)) throw InputError("no preset file " + quote(text));
+    const fs::file_status status = fs::status(text, ec);
+    if (!fs::exists(status)) throw InputError("no preset file " + quote(text));
+    if (fs::is_directory(status)) throw InputError("preset " + quote(text) + " is a folder, not a JSON file");
+    if (!fs::is_regular_file(status))
+      throw InputError("preset " + quote(text) + " is not a regular file (a pipe, socket or device): give a JSON file");
     return fs::path(text);
   }
   const fs::path file = presetDir / (text + ".json");

@@ -43,6 +43,17 @@ LoadedScene loadScene(const SceneOptions& options) {
     }
   }
   const Registry& registry = parameterRegistry(materials);
+  // The lights drawn from an environment map hold to the range a light given by hand has.
+  if (const std::optional<sss::Environment>& env = out.config.scene.environment) {
+    const Registry::Param& intensity = *registry.find("light.intensity");
+    for (const sss::Light& l : out.config.scene.lights)
+      for (int b = 0; b < 3; ++b)
+        if (!(l.intensity[b] <= intensity.max))
+          throw InputError(out.presetPath.string() + ": environment: " + env->file.string() +
+                           ": a light drawn from it has an irradiance of " + formatNumber(l.intensity[b]) +
+                           " W/m², beyond light.intensity's range [0, " + formatNumber(intensity.max) +
+                           "]; scale the map down with \"intensity\"");
+  }
   if (!options.size.empty()) {
     const auto [w, h] = parseSize(options.size);
     registry.set(out.config, "render.width", w);

@@ -214,7 +214,7 @@ Script parseScript(std::string_view text, const std::string& fileName, const Reg
         c.a = in.number("speed", -kMaxSpeed, kMaxSpeed);
         break;
       case ScriptAction::Seek:
-        c.a = in.number("seek time [s]", -kMaxSeekS, kMaxSeekS);
+        c.a = in.number("seek time [s]", 0.0, kMaxSeekS);  // the range of --time and a preset's start_s
         break;
       case ScriptAction::Orbit:
         c.a = in.number("orbit yaw [deg]", -kMaxAngleDeg, kMaxAngleDeg);

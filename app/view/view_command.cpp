@@ -12,6 +12,8 @@
 
 #include "app/commands/capture_command.h"
 #include "app/commands/frame_stats.h"
+#include "app/commands/interrupt.h"
+#include "app/commands/stats_writer.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
@@ -78,7 +80,7 @@ struct CheckedInputs {
 
 CheckedInputs checkInputs(const ViewOptions& options) {
   if (options.frames < 0) throw InputError("--frames: must not be negative");
-  if (!(options.fps >= 0.0) || !std::isfinite(options.fps)) throw InputError("--fps: must be a positive number");
+  if (options.fps != 0.0) checkFps("--fps", options.fps);  // 0: not given (wall time)
   if (options.timeS) checkTime("--time", *options.timeS);
   CheckedInputs in;
   const LoadedScene loaded = loadScene(options.scene);  // the preset's and --set's errors, first
@@ -183,6 +185,10 @@ int runView(const ViewOptions& options) {
   run.parameters = session.registry().snapshot(session.config());
   run.framesRequested = options.frames;
   nlohmann::json parameters = run.parameters;
+  const InterruptScope interruptScope;
+  // --stats: each frame's record appended as it is done (memory flat however long the window is open).
+  std::optional<StatsWriter> stats;
+  if (!options.stats.empty()) stats.emplace(options.stats);
 
   auto last = Clock::now();
   auto lastTriangles = last - std::chrono::hours(1);
@@ -190,7 +196,9 @@ int runView(const ViewOptions& options) {
   int imageW = session.config().render.width, imageH = session.config().render.height;
   for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
     glfwPollEvents();
-    if (glfwWindowShouldClose(window)) break;
+    // SIGINT, SIGTERM or SIGHUP (a closed terminal) end the window as its close button does, with
+    // --stats written whole and saying so.
+    if (glfwWindowShouldClose(window) || interrupted()) break;
     glfwGetFramebufferSize(window, &width, &height);
     if (width == 0 || height == 0) {  // minimised
       --frame;
@@ -363,7 +371,7 @@ int runView(const ViewOptions& options) {
       record.view["panel_visible"] = panelVisible;
       record.view["can_undo"] = session.history().canUndo();
       record.view["can_redo"] = session.history().canRedo();
-      run.frames.push_back(std::move(record));
+      stats->append(run, record);
     }
     glfwSwapBuffers(window);
   }
@@ -375,9 +383,13 @@ int runView(const ViewOptions& options) {
     run.height = session.config().render.height;
     run.gpuBytes = session.renderer().gpuBytes();
     run.triangles = session.renderer().triangleCount();
-    gpu::writeTextFileAtomically(options.stats, toJson(run).dump(2) + "\n");
+    if (interrupted()) {
+      run.state = "interrupted";
+      run.stopReason = interruptName();
+    }
+    stats->finish(run);
   }
-  return 0;
+  return interrupted() ? interruptExitCode() : 0;
 }
 
 }  // namespace tallow::app

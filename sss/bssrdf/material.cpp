@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "gpu/file_bytes.h"
+#include "gpu/utf8.h"
 
 namespace tallow::sss {
 
@@ -128,6 +129,11 @@ MaterialTable MaterialTable::parse(std::string_view text, const std::string& nam
       for (const char c : *text)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
           fail(std::string(text == &m.name ? "name" : "source") + ": contains a control character");
+    // Names go into JSON (stats.json, presets), which must be UTF-8: refused here, not after a render.
+    for (const std::string* text : {&m.name, &m.source})
+      if (const std::size_t bad = gpu::firstInvalidUtf8(*text); bad != std::string::npos)
+        fail(std::string(text == &m.name ? "name" : "source") + ": not valid UTF-8 (byte " + std::to_string(bad + 1) +
+             ")");
     if (m.name.front() == ' ' || m.name.back() == ' ') fail("name: leading or trailing space in \"" + m.name + "\"");
 
     float numbers[10];

@@ -62,7 +62,8 @@ CommandResult runTallow(const std::vector<std::string>& args, const std::vector<
 TallowProcess::TallowProcess(const std::vector<std::string>& args, const std::vector<std::string>& env) {
   std::vector<std::string> words = {"/usr/bin/env"};
   words.insert(words.end(), env.begin(), env.end());
-  words.push_back(TALLOW_TEST_BINARY);
+  const char* other = std::getenv("TALLOW_TEST_TALLOW");  // as runTallow: another build
+  words.push_back(other && *other ? other : TALLOW_TEST_BINARY);
   words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& w : words) argv.push_back(w.data());
@@ -116,6 +117,23 @@ int TallowProcess::wait() {
     status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   }
   return status_;
+}
+
+int TallowProcess::wait(std::uint64_t& bytesWritten) {
+  bytesWritten = 0;
+  if (pid_ > 0 && status_ < 0) {
+    // Wait for the exit without reaping (WNOWAIT): the zombie's /proc entry still holds its counts.
+    siginfo_t info{};
+    while (::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+    }
+    std::ifstream io("/proc/" + std::to_string(pid_) + "/io");
+    for (std::string key; io >> key;) {
+      std::uint64_t value = 0;
+      io >> value;
+      if (key == "wchar:") bytesWritten = value;
+    }
+  }
+  return wait();
 }
 
 std::string TallowProcess::out() const { return slurp(io_.path() / "out"); }

@@ -3,6 +3,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -40,6 +41,10 @@ class TallowProcess {
   void signal(int sig);
   /// Waits for the end; the exit status as a shell reports it (128 + the signal when one ended it).
   int wait();
+  /// wait(), reading first how many bytes the process passed to write(2) and its kin, all threads,
+  /// as the kernel counts them (wchar of /proc/PID/io, kept until the process is reaped): files,
+  /// pipes and terminals alike, so an upper bound of what it wrote to disk.
+  int wait(std::uint64_t& bytesWritten);
   std::string out() const;
   std::string err() const;
 
