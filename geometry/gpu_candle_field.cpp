@@ -1,6 +1,8 @@
 #include "geometry/gpu_candle_field.h"
 
 #include <array>
+#include <iterator>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -14,10 +16,9 @@ void GpuCandleField::setUniforms(gpu::Program& program, const CandleField& candl
   const auto f = [](double v) { return static_cast<float>(v); };
   program.set("uCandle.radius", f(c.radius));
   program.set("uCandle.height", f(c.height));
-  program.set("uCandle.cupRadius", f(c.cupRadius));
-  program.set("uCandle.cupDepth", f(c.cupDepth));
-  program.set("uCandle.bowlRadius", f(c.bowlRadius));
-  program.set("uCandle.bowlCentreY", f(c.bowlCentreY));
+  program.set("uCandle.poolY", f(c.poolY));
+  program.set("uCandle.poolRadius", f(c.poolRadius));
+  program.set("uCandle.poolDepth", f(c.poolDepth));
   program.set("uCandle.wickRadius", f(c.wickRadius));
   program.set("uCandle.wickBottom", f(c.wickBottom));
   program.set("uCandle.wickTop", f(c.wickTop));
@@ -27,13 +28,22 @@ void GpuCandleField::setUniforms(gpu::Program& program, const CandleField& candl
   program.set("uCandle.reach", f(c.reach));
   program.set("uCandle.low", f(c.low));
   program.set("uCandle.high", f(c.high));
+  program.set("uCandle.profileCount", c.profileCount);
+  program.set("uCandle.notchCount", c.notchCount);
+  program.set("uCandle.dripClipY", f(c.dripClipY));
   program.set("uCandle.dripCount", c.dripCount);
-  std::array<glm::vec3, candle_f64::CANDLE_MAX_SPHERES> centres{};
-  for (int i = 0; i < candle_f64::CANDLE_MAX_SPHERES; ++i) {
-    centres[static_cast<std::size_t>(i)] = glm::vec3(c.dripCentre[i]);
-    program.set("uCandle.dripRadius[" + std::to_string(i) + "]", f(c.dripRadius[i]));
-  }
-  program.set("uCandle.dripCentre", centres.data(), candle_f64::CANDLE_MAX_SPHERES);
+  program.set("uCandle.puddleCount", c.puddleCount);
+  program.set("uCandle.puddleThickness", f(c.puddleThickness));
+  // The arrays of four-vectors, converted from double.
+  const auto set = [&](const char* name, const auto& values) {
+    std::vector<glm::vec4> floats(std::begin(values), std::end(values));
+    program.set(name, floats.data(), static_cast<int>(floats.size()));
+  };
+  set("uCandle.profile", c.profile);
+  set("uCandle.notch", c.notch);
+  set("uCandle.drip", c.drip);
+  set("uCandle.dripBound", c.dripBound);
+  set("uCandle.puddle", c.puddle);
 }
 
 void GpuCandleField::fill(GpuDualContouring& dc, const CandleField& candle, const SampledLattice& frame) {

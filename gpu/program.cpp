@@ -128,5 +128,9 @@ void Program::set(std::string_view n, const glm::vec3* v, int count) {
 void Program::set(std::string_view n, const glm::vec4* v, int count) {
   glProgramUniform4fv(id_, location(n), count, glm::value_ptr(v[0]));
 }
+void Program::set(std::string_view n, const float* v, int count) { glProgramUniform1fv(id_, location(n), count, v); }
+void Program::set(std::string_view n, const glm::vec2* v, int count) {
+  glProgramUniform2fv(id_, location(n), count, glm::value_ptr(v[0]));
+}
 
 }  // namespace tallow::gpu

@@ -50,6 +50,8 @@ class Program {
   void set(std::string_view name, const glm::mat4* v, int count);
   void set(std::string_view name, const glm::vec3* v, int count);
   void set(std::string_view name, const glm::vec4* v, int count);
+  void set(std::string_view name, const float* v, int count);
+  void set(std::string_view name, const glm::vec2* v, int count);
   GLint location(std::string_view name);
 
  private:

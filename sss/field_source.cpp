@@ -13,12 +13,14 @@ namespace tallow::sss {
 
 namespace {
 constexpr int kMeshLevelSetResolution = 128;  // voxels across a mesh field's largest extent
-constexpr float kCandleMargin = 0.25f;        // × radius around the t = 0 candle: room for drips
 }  // namespace
 
 geometry::CandleParams candleParams(const FieldDesc& desc) {
   geometry::CandleParams p;
   p.durationS = desc.candleDurationS;
+  p.timeScale = desc.candleTimeScale;
+  p.dripCount = desc.candleDrips;
+  p.seed = desc.candleSeed;
   return p;
 }
 
@@ -61,14 +63,10 @@ FieldSource::FieldSource(const SceneObject& o) : parts_(std::make_unique<Parts>(
   p.desc = o.field;
   switch (o.field.kind) {
     case FieldKind::Blob: p.bounds = geometry::BlobField(0.0, p.blobParams()).bounds(); break;
-    case FieldKind::Candle: {
-      const geometry::CandleParams params = p.candleParams();
-      p.bounds = geometry::CandleField(0.0, params).bounds();  // the tallest candle
-      const float m = kCandleMargin * static_cast<float>(params.radius);
-      p.bounds.min -= glm::vec3(m, 0.0f, m);
-      p.bounds.max += glm::vec3(m, 0.0f, m);
+    case FieldKind::Candle:
+      // Every t: the lattice over it holds still, so wax that does not change keeps its vertices.
+      p.bounds = geometry::CandleField::lifetimeBounds(p.candleParams());
       break;
-    }
     case FieldKind::Mesh: {
       // As a mesh object: largest extent `scale` metres, bottom centre at the origin.
       geometry::TriangleMesh mesh = geometry::readPly(o.field.meshPath);
@@ -118,10 +116,9 @@ std::unique_ptr<geometry::ScalarField> FieldSource::at(double timeS) const {
 
 geometry::SampledLattice FieldSource::sample(double timeS, int n) const {
   const std::unique_ptr<geometry::ScalarField> field = at(timeS);
-  // The blob's and a melting mesh's lattice covers the box of every t (the blob's own bounds are
-  // that box already); the candle and a still mesh are sampled over their own narrow band at t,
-  // which the bounds contain.
-  if (parts_->desc.kind == FieldKind::Blob || parts_->melts()) return geometry::sampleField(*field, parts_->bounds, n);
+  // The blob's, the candle's and a melting mesh's lattice covers the box of every t (the blob's own
+  // bounds are that box already); a still mesh is sampled over its own narrow band.
+  if (parts_->desc.kind != FieldKind::Mesh || parts_->melts()) return geometry::sampleField(*field, parts_->bounds, n);
   return geometry::sampleField(*field, n);
 }
 
@@ -139,11 +136,11 @@ std::optional<geometry::CandleField> FieldSource::candleAt(double timeS) const {
   return geometry::CandleField(timeS, parts_->candleParams());
 }
 
-geometry::SampledLattice FieldSource::gpuLattice(double timeS, int n) const {
+geometry::SampledLattice FieldSource::gpuLattice(double /*timeS*/, int n) const {
   // As sample() over the same box.
   switch (parts_->desc.kind) {
     case FieldKind::Blob: return geometry::latticeOver(parts_->bounds, n);
-    case FieldKind::Candle: return geometry::latticeOver(candleAt(timeS)->bounds(), n);
+    case FieldKind::Candle: return geometry::latticeOver(parts_->bounds, n);
     case FieldKind::Mesh: break;
   }
   throw std::logic_error("FieldSource::gpuLattice: a mesh field is sampled on the CPU");

@@ -54,7 +54,7 @@ class FieldSource {
   /// A candle field (FieldKind::Candle) at time t; std::nullopt for the other kinds.
   std::optional<geometry::CandleField> candleAt(double timeS) const;
   /// The lattice sample(t, n) fills, without values: where the GPU evaluates a field for which
-  /// evaluatedOnGpu() (a blob: the box of every t; a candle: its own box at t). Throws
+  /// evaluatedOnGpu() (a blob, a candle: the box of every t, so the lattice holds still). Throws
   /// std::logic_error for the other kinds.
   geometry::SampledLattice gpuLattice(double timeS, int n) const;
 

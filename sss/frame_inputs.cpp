@@ -96,7 +96,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
       f << s.scene.objects.size();
       for (const SceneObject& o : s.scene.objects) {
         f << o.shape << o.meshPath.string() << o.field.kind << o.field.blobScale << o.field.candleDurationS
-          << o.field.meshPath.string() << o.field.meltDurationS << o.size << o.transform.position
+          << o.field.candleTimeScale << o.field.candleDrips << o.field.candleSeed << o.field.meshPath.string() << o.field.meltDurationS << o.size << o.transform.position
           << o.transform.rotationDeg << o.transform.scale << o.translucent;
       }
     });

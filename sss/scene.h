@@ -24,7 +24,10 @@ enum class FieldKind { Blob, Candle, Mesh };
 struct FieldDesc {
   FieldKind kind = FieldKind::Blob;
   double blobScale = 0.03;        ///< blob: metres per unscaled unit (BlobParams::scale)
-  double candleDurationS = 20.0;  ///< candle: seconds until it has burnt down (CandleParams::durationS)
+  double candleDurationS = 20.0;  ///< candle: the animation's seconds (CandleParams::durationS)
+  double candleTimeScale = 300.0;  ///< candle: real seconds per animation second (CandleParams::timeScale)
+  int candleDrips = 10;            ///< candle: overflows over the animation (CandleParams::dripCount)
+  std::uint32_t candleSeed = 1;    ///< candle: the overflows' times and places (CandleParams::seed)
   std::filesystem::path meshPath;  ///< mesh: the triangle mesh turned into a level set; absolute
   double meltDurationS = 0.0;      ///< mesh: seconds until fully melted (MeltParams); 0 = it does not melt
 };

@@ -83,9 +83,8 @@ TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
   const gpu::Image image = render(s, 0.0);
   expectFinite(image);
   EXPECT_GT(s.renderer().triangleCount(), 100u);
-  // The point light of the preset follows the flame of the candle: at the end of the burn it has
-  // come down with the top by burnFraction · height, and by the cup deepening from 35% to 100%
-  // of cupDepth (CandleParams; the wick stands wickLength above the cup's bottom throughout).
+  // The point light of the preset follows the flame of the candle: it stands wickExposed +
+  // flameLift above the pool's surface (CandleParams), which comes down as the candle burns.
   const sss::Scene& scene = s.scene();
   const auto light = std::find_if(scene.lights.begin(), scene.lights.end(),
                                   [](const sss::Light& l) { return l.kind == sss::LightKind::Point; });
@@ -99,11 +98,11 @@ TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {
   const glm::dvec3 position(scene.objects[0].transform.position);
   std::printf("[ field ] candle flame at t = 0: (%.5f, %.5f, %.5f), at t = %g: y = %.5f\n", start.x, start.y, start.z,
               end, burnt.y);
-  const double drop = params.burnFraction * params.height + 0.65 * params.cupDepth;
   constexpr double kFloat = 1e-6;  // light positions are floats (an ulp at 0.1 m is 7e-9)
-  EXPECT_NEAR(start.y - burnt.y, drop, kFloat);
-  const double flameY0 = params.height - 0.35 * params.cupDepth + params.wickLength + params.flameLift;  // see candle_field.cpp
-  EXPECT_NEAR(start.y - position.y, flameY0, kFloat);
+  const double lift = params.wickExposed + params.flameLift;
+  EXPECT_NEAR(start.y - position.y, geometry::CandleField(0.0, params).poolY() + lift, kFloat);
+  EXPECT_NEAR(burnt.y - position.y, geometry::CandleField(end, params).poolY() + lift, kFloat);
+  EXPECT_GT(start.y - burnt.y, 0.005) << "the flame comes down with the burning candle";
   EXPECT_NEAR(start.x, position.x, kFloat);
   EXPECT_NEAR(burnt.z, position.z, kFloat);
   // The candle changes as it burns: frames at the start and the end differ.

@@ -149,11 +149,11 @@ Shape makeShape(const std::string& name) {
   } else if (name == "candle") {
     auto candle = std::make_unique<geometry::CandleField>(0.0);
     // The wick (1 mm radius: under a cell of most lattices) is left out of both directions of the
-    // comparison: a cylinder of 3 wick radii about the axis above 5 mm below the cup's bottom
-    // (the wick's root is 4 mm below it).
+    // comparison: a cylinder of 3 wick radii about the axis above 3 mm below the pool's floor (the
+    // wick's root is 2 mm below it).
     const double wickZone = 3.0 * candle->params().wickRadius;
-    const double wickFloor = candle->rimHeight() - candle->currentCupDepth() - 0.005;
-    s.description = "the candle at t = 0 (cylinder of 2 cm radius, 8 cm tall, its rim before it melts), wick left out";
+    const double wickFloor = candle->poolY() - candle->poolDepth() - 0.003;
+    s.description = "the candle at t = 0 (cylinder of 2 cm radius, 6.5 cm tall, before it melts), wick left out";
     s.sharp = true;
     s.measured = [wickZone, wickFloor](glm::dvec3 p) { return std::hypot(p.x, p.z) > wickZone || p.y < wickFloor; };
     s.field = std::move(candle);

@@ -13,6 +13,7 @@
 #include "app/config/json_document.h"
 #include "app/config/params.h"
 #include "app/config/registry.h"
+#include "geometry/candle_field.h"
 #include "gpu/utf8.h"
 
 namespace tallow::app {
@@ -58,10 +59,11 @@ const std::vector<std::string> kObjectKeys = {"name",     "mesh",     "shape",  
                                               "albedo",   "position", "rotation_deg", "scale", "field",
                                               "volume"};
 const std::vector<std::string> kBlobFieldKeys = {"type", "scale"};
-const std::vector<std::string> kCandleFieldKeys = {"type", "duration_s"};
+const std::vector<std::string> kCandleFieldKeys = {"type", "duration_s", "time_scale", "drips", "seed"};
 const std::vector<std::string> kMeshFieldKeys = {"type", "mesh", "melt_s"};
 constexpr Range kBlobScale{0.0, 1e3, true};      ///< metres per unscaled blob unit
-constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< seconds until the candle has burnt down
+constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< animation seconds of the candle's burn
+constexpr Range kCandleTimeScale{1.0, 3600.0, false};  ///< real seconds per animation second
 constexpr Range kMeltDurationS{0.0, 1e6, true};    ///< seconds until a mesh field has melted
 const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta", "from", "scale"};
 constexpr Range kMaterialScale{0.0, 1e6, true};  ///< multiplies σ_s and σ_a of a "from" material
@@ -179,6 +181,26 @@ class PresetReader {
   std::optional<float> optNumber(const Ptr& object, const std::string& key, const Range& range) const {
     if (!has(object, key)) return std::nullopt;
     return number(object / key, key, range);
+  }
+
+  /// An integer in [min, max] (a number with a fraction is refused, not rounded).
+  std::optional<std::int64_t> optInteger(const Ptr& object, const std::string& key, std::int64_t min,
+                                         std::int64_t max) const {
+    if (!has(object, key)) return std::nullopt;
+    const Ptr p = object / key;
+    const json& v = at(p);
+    const bool fits = v.is_number_integer() &&
+                      (v.is_number_unsigned() ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(max)
+                                              : v.get<std::int64_t>() >= min && v.get<std::int64_t>() <= max);
+    if (!fits) doc_.fail(p, key + ": expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return v.is_number_unsigned() ? static_cast<std::int64_t>(v.get<std::uint64_t>()) : v.get<std::int64_t>();
+  }
+
+  /// A random seed: an integer in [0, 2³² − 1].
+  std::optional<std::uint32_t> optSeed(const Ptr& object, const std::string& key) const {
+    const auto v = optInteger(object, key, 0, 0xFFFFFFFFll);
+    if (!v) return std::nullopt;
+    return static_cast<std::uint32_t>(*v);
   }
 
   /// An array of `n` numbers, each within `range`; out-of-range errors point at the element.
@@ -417,6 +439,10 @@ class PresetReader {
       checkKeys(p, kCandleFieldKeys, "a candle field");
       field.kind = sss::FieldKind::Candle;
       field.candleDurationS = optNumber(p, "duration_s", kCandleDurationS).value_or(static_cast<float>(field.candleDurationS));
+      field.candleTimeScale = optNumber(p, "time_scale", kCandleTimeScale).value_or(static_cast<float>(field.candleTimeScale));
+      field.candleDrips = static_cast<int>(
+          optInteger(p, "drips", 0, geometry::CandleParams::kMaxDrips).value_or(field.candleDrips));
+      field.candleSeed = optSeed(p, "seed").value_or(field.candleSeed);
     } else {
       checkKeys(p, kMeshFieldKeys, "a mesh field");
       field.kind = sss::FieldKind::Mesh;
@@ -510,14 +536,7 @@ class PresetReader {
     if (has(p, "axis")) v.axis = direction(p / "axis", "axis");
     v.fraction = optNumber(p, "fraction", kVolumeFraction).value_or(v.fraction);
     v.turbulence = optNumber(p, "turbulence", kVolumeTurbulence).value_or(v.turbulence);
-    if (has(p, "seed")) {
-      const Ptr seed = p / "seed";
-      const json& s = at(seed);
-      constexpr std::uint64_t kMaxSeed = 0xFFFFFFFFu;
-      if (!s.is_number_integer() || (s.is_number_unsigned() ? s.get<std::uint64_t>() > kMaxSeed : s.get<std::int64_t>() < 0))
-        doc_.fail(seed, "seed: expected an integer in [0, 4294967295]");
-      v.seed = static_cast<std::uint32_t>(s.get<std::uint64_t>());
-    }
+    v.seed = optSeed(p, "seed").value_or(v.seed);
     return v;
   }
 

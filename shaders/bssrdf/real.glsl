@@ -2,7 +2,7 @@
 // compiled both as GLSL 4.50 (every GPU pass, shaders/bssrdf/probe.comp) and as C++ through GLM,
 // in float and in double precision (sss/bssrdf/bssrdf.cpp, the tests). See docs/bssrdf-models.md.
 //
-// Types. `real`, `real2`, `real3` are the scalar and vector types. GLSL: the macros below (float,
+// Types. `real`, `real2`, `real3`, `real4` are the scalar and vector types. GLSL: the macros below (float,
 // vec2, vec3). C++: type aliases declared in the namespace that includes the files
 // (`using real = float; using real3 = glm::vec3;` or double / glm::dvec3), one namespace per
 // precision, so that the float and the double instantiations are separate functions.
@@ -33,6 +33,7 @@
 #define real float
 #define real2 vec2
 #define real3 vec3
+#define real4 vec4
 #endif
 
 const real BSSRDF_PI = 3.14159265358979323846;
