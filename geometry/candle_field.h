@@ -34,9 +34,10 @@ struct CandleParams {
   double lip = 0.0022;            ///< the rim's thickness at its top once the pool is full
   double wickRadius = 0.001;      ///< metres
   double wickExposed = 0.005;     ///< wick above the pool (trimmed to about a quarter of an inch)
-  /// The flame's emission centre (the point light) above the wick's tip, metres: 5 mm below the
-  /// rim, surrounded by wax.
-  double flameLift = 0.006;
+  /// The flame's emission centre (the point light) above the wick's tip, metres: where
+  /// geometry::flameEmission puts it for a steady flame (tested), 2.5–4 mm below the rim from the
+  /// preset's start on, surrounded by wax.
+  double flameLift = 0.007;
   int dripCount = 10;            ///< overflows over the animation (≤ kMaxDrips)
   double dripRadius = 0.0016;    ///< metres
   /// Animation seconds a drip runs before it freezes (the mean; each draws 0.7–1.3 of it). Real

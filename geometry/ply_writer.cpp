@@ -37,7 +37,7 @@ void append(std::string& out, T value) {
 
 }  // namespace
 
-std::string encodePly(const TriangleMesh& input) {
+std::string encodePly(const TriangleMesh& input, const std::vector<std::string>& comments) {
   const TriangleMesh* mesh = &input;
   TriangleMesh withNormals;
   if (input.normals.size() != input.positions.size()) {
@@ -51,6 +51,10 @@ std::string encodePly(const TriangleMesh& input) {
       if (v >= vertexCount) throw std::invalid_argument("encodePly: a triangle names vertex " + std::to_string(v) +
                                                         " of " + std::to_string(vertexCount));
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by tallow\n";
+  for (const std::string& c : comments) {
+    if (c.find_first_of("\r\n") != std::string::npos) throw std::invalid_argument("encodePly: a comment of two lines");
+    out += "comment " + c + "\n";
+  }
   out += "element vertex " + std::to_string(vertexCount) + "\n";
   for (const char* p : {"x", "y", "z", "nx", "ny", "nz"}) out += std::string("property float ") + p + "\n";
   out += "element face " + std::to_string(mesh->triangles.size()) + "\n";
@@ -71,8 +75,8 @@ std::string encodePly(const TriangleMesh& input) {
   return out;
 }
 
-void writePly(const std::filesystem::path& path, const TriangleMesh& mesh) {
-  gpu::writeTextFileAtomically(path, encodePly(mesh));
+void writePly(const std::filesystem::path& path, const TriangleMesh& mesh, const std::vector<std::string>& comments) {
+  gpu::writeTextFileAtomically(path, encodePly(mesh, comments));
 }
 
 }  // namespace tallow::geometry

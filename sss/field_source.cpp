@@ -5,6 +5,7 @@
 
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
+#include "geometry/candle_flame.h"
 #include "geometry/mesh_level_set_field.h"
 #include "geometry/ply_reader.h"
 #include "sss/scene_geometry.h"
@@ -24,16 +25,42 @@ geometry::CandleParams candleParams(const FieldDesc& desc) {
   return p;
 }
 
+namespace {
+double luminance(glm::dvec3 rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
+}  // namespace
+
+FollowedFlame followedFlame(const Scene& scene, const Light& light, double timeS) {
+  const SceneObject& o = scene.objects.at(static_cast<std::size_t>(light.follow));
+  if (o.shape != ShapeKind::Field || o.field.kind != FieldKind::Candle)
+    throw std::invalid_argument("a light follows object \"" + o.name + "\", which is not a candle field");
+  FollowedFlame f;
+  f.candle = &o;
+  f.model = SceneGeometry::modelMatrix(o, geometry::Aabb{});
+  f.scale = glm::length(glm::vec3(f.model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)));  // world per field unit
+  f.flame = geometry::candleFlameAt(geometry::CandleField(timeS, candleParams(o.field)), scene.flameFlicker);
+  f.emission = geometry::flameEmission(f.flame);
+  return f;
+}
+
+glm::dvec3 FollowedFlame::intensity(const Light& preset) const {
+  // The flame's flux in the light's luminance, with the flicker's gain: the colour is the flame's.
+  return emission.flux * (luminance(glm::dvec3(preset.intensity)) * flame.gain / emission.luminance());
+}
+
+double FollowedFlame::radianceScale(const Light& placed) const {
+  // The flux is in field units (m² before the transform): scale² turns it into world m².
+  return luminance(glm::dvec3(placed.intensity)) / (emission.luminance() * double(scale) * double(scale));
+}
+
 Scene sceneAtTime(const Scene& scene, double timeS) {
   Scene out = scene;
-  for (Light& light : out.lights) {
+  for (std::size_t i = 0; i < out.lights.size(); ++i) {
+    Light& light = out.lights[i];
     if (light.follow < 0) continue;
-    const SceneObject& o = scene.objects.at(static_cast<std::size_t>(light.follow));
-    if (o.shape != ShapeKind::Field || o.field.kind != FieldKind::Candle)
-      throw std::invalid_argument("a light follows object \"" + o.name + "\", which is not a candle field");
-    const glm::dvec3 flame = geometry::CandleField(timeS, candleParams(o.field)).flamePosition();
-    const glm::mat4 model = SceneGeometry::modelMatrix(o, geometry::Aabb{});
-    light.position = glm::vec3(model * glm::vec4(glm::vec3(flame), 1.0f));
+    // The light is the drawn flame's emission: its centre, and its flux (colour and flicker included).
+    const FollowedFlame f = followedFlame(scene, scene.lights[i], timeS);
+    light.position = glm::vec3(f.model * glm::vec4(glm::vec3(f.emission.centre), 1.0f));
+    light.intensity = glm::vec3(f.intensity(scene.lights[i]));
   }
   return out;
 }

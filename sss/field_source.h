@@ -9,6 +9,7 @@
 
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
+#include "geometry/candle_flame.h"
 #include "geometry/grid_sampler.h"
 #include "geometry/mesh_melt.h"
 #include "geometry/scalar_field.h"
@@ -23,8 +24,29 @@ geometry::CandleParams candleParams(const FieldDesc& desc);
 /// True when a field of this description changes with t (blob, candle, a mesh field that melts).
 bool fieldAnimated(const FieldDesc& desc);
 
-/// The scene at time t: every light that follows a candle's flame (Light::follow) moved to
-/// CandleField(t).flamePosition() under its object's transform; otherwise `scene` unchanged.
+/// A light that follows a candle (Light::follow) at time t: the candle, its flame
+/// (geometry::candleFlameAt with scene.flameFlicker) and what it emits. Throws std::invalid_argument
+/// when the object followed is not a candle field.
+struct FollowedFlame {
+  const SceneObject* candle = nullptr;
+  glm::mat4 model{1.0f};  ///< the candle's object → world transform
+  float scale = 1.0f;     ///< world units per field unit
+  geometry::CandleFlame flame;      ///< field units
+  geometry::FlameEmission emission;  ///< field units
+
+  /// The light's intensity [W/sr] per band: the flame's flux, in the luminance of the preset's
+  /// light (`preset`, as loaded) times the flicker's gain.
+  glm::dvec3 intensity(const Light& preset) const;
+  /// The drawn flame's world radiance per unit of flameProfile, for the light as sceneAtTime placed
+  /// it: the flame's flux then carries exactly the light's intensity.
+  double radianceScale(const Light& placed) const;
+};
+FollowedFlame followedFlame(const Scene& scene, const Light& light, double timeS);
+
+/// The scene at time t: every light that follows a candle's flame (Light::follow) is the flame's
+/// emission under its object's transform — at its emission centre, its intensity the flame's flux
+/// (the blackbody colour of the drawn flame, the luminance of the light's own intensity, the
+/// flicker's gain); otherwise `scene` unchanged.
 Scene sceneAtTime(const Scene& scene, double timeS);
 
 class FieldSource {

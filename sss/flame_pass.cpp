@@ -10,6 +10,9 @@ namespace tallow::sss {
 
 namespace {
 
+/// Rows of the flame's sheet (a triangle strip of 2 × rows vertices): the sway bends it.
+constexpr int kFlameRows = 12;
+
 /// The candle a light follows, when it is a flame to draw.
 const SceneObject* followedCandle(const Scene& scene, const Light& light) {
   if (light.kind != LightKind::Point || light.follow < 0) return nullptr;
@@ -18,14 +21,6 @@ const SceneObject* followedCandle(const Scene& scene, const Light& light) {
 }
 
 }  // namespace
-
-double FlameShape::effectiveArea() const {
-  // ∫₀¹ 2 w(v) (1.3 − 0.6 v) dv with w = √v (1 − v) / f(1/3): 1.3 B(3/2, 2) − 0.6 B(5/2, 2), where
-  // B(a, 2) = 1/a − 1/(a + 1), times 2 / f(1/3), f(1/3) = √(1/3) · 2/3 (flame.frag's profile).
-  const double widest = std::sqrt(1.0 / 3.0) * 2.0 / 3.0;
-  const double profile = 2.0 / widest * (1.3 * (1.0 / 1.5 - 1.0 / 2.5) - 0.6 * (1.0 / 2.5 - 1.0 / 3.5));
-  return halfWidth * height * profile;
-}
 
 int flameCount(const FrameState& state) {
   if (!state.settings.flame) return 0;
@@ -42,7 +37,8 @@ std::string FlamePass::reason(const FrameState& state) const {
 
 PassIo FlamePass::io(const FrameState&) const {
   // Drawn over each new picture of the camera pass (hence kCamera: it reruns whenever that does).
-  return {{resource::kCamera, "render.flame", "scene.light_placement", "scene.light_intensity", "scene.camera"},
+  return {{resource::kCamera, "render.flame", "flame.exposure_ev", "scene.light_placement", "scene.light_intensity",
+           "scene.camera"},
           {},
           {}};
 }
@@ -54,8 +50,6 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   if (!emptyVao_) emptyVao_ = std::make_unique<gpu::VertexArray>();
   gpu::Program& p = *program_;
   setCameraUniforms(p, context.camera());
-  const Scene& scene = context.scene();
-  const FlameShape shape;
   const CameraTarget& t = context.target;
   t.framebuffer.bind();
   glViewport(0, 0, context.settings().width, context.settings().height);
@@ -69,22 +63,20 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   glBlendFunci(1, GL_ZERO, GL_SRC_COLOR);  // coverage: alpha halved where the flame is in front
   p.use();
   emptyVao_->bind();
+  // The lights as sceneAtTime placed them: each the emission of the flame drawn here.
+  const Scene& scene = context.scene();
   for (const Light& light : scene.lights) {
-    const SceneObject* candle = followedCandle(scene, light);
-    if (!candle) continue;
-    const geometry::CandleParams params = candleParams(candle->field);
-    const glm::mat4 model = SceneGeometry::modelMatrix(*candle, geometry::Aabb{});
-    const glm::vec3 axis(model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
-    const float scale = glm::length(axis);  // world units per field unit
-    const glm::vec3 up = axis / scale;
-    // The base 1 mm below the wick's tip, which is flameLift below the light.
-    const float below = static_cast<float>(params.flameLift + 0.001) * scale;
-    p.set("uBase", light.position - below * up);
+    if (!followedCandle(scene, light)) continue;
+    const FollowedFlame f = followedFlame(scene, light, context.state.timeS);
+    const glm::vec3 axis(f.model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
+    const glm::vec3 up = axis / f.scale;
+    p.set("uBase", glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.base), 1.0f)));
     p.set("uUp", up);
-    p.set("uHeight", static_cast<float>(shape.height) * scale);
-    p.set("uHalfWidth", static_cast<float>(shape.halfWidth) * scale);
-    p.set("uRadiance", light.intensity / static_cast<float>(shape.effectiveArea() * scale * scale));
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    p.set("uHeight", static_cast<float>(f.flame.height) * f.scale);
+    p.set("uHalfWidth", static_cast<float>(f.flame.halfWidth) * f.scale);
+    p.set("uSway", glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.sway), 0.0f)));
+    p.set("uRadianceScale", static_cast<float>(f.radianceScale(light) * std::exp2(context.settings().flameExposureEv)));
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 2 * kFlameRows);
   }
   glBindVertexArray(0);
   glUseProgram(0);

@@ -1,10 +1,12 @@
 #pragma once
-// The visible flame of a burning candle (issue 16, point 5): for each point light that follows a
-// candle field, an emissive teardrop standing on the wick, drawn into the camera target after the
-// surface pass (depth-tested against it, added to what is behind: a flame is transparent) and
-// nowhere else — not in the shadow maps, the light G-buffers or the radiosity maps, whose light is
-// the point light's. Its radiance is the light's intensity over the flame's area, so that the
-// drawn flame sends the camera the intensity the point light has.
+// The visible flame of a burning candle (issues 16 and 35): for each point light that follows a
+// candle field, the flame of geometry/candle_flame.h — a soft-edged teardrop on the wick, its radiance
+// shaders/flame/flame_profile.glsl (a blackbody profile, a dark cone, a blue base), bent by its sway
+// and flickering with it — on a camera-facing sheet drawn into the camera target after the surface
+// pass (depth-tested against it, added to what is behind: a flame is transparent) and nowhere else:
+// not in the shadow maps, the light G-buffers or the radiosity maps, whose light is the point light's.
+// The point light is the same emission (sceneAtTime): the flame's flux is the light's intensity, its
+// emission centre the light's position.
 #include <memory>
 #include <string>
 
@@ -13,15 +15,6 @@
 #include "sss/frame_passes.h"
 
 namespace tallow::sss {
-
-/// The flame's teardrop in the candle field's units (metres before the object's transform).
-struct FlameShape {
-  double height = 0.016;     ///< from its base, 1 mm below the wick's tip, to its tip
-  double halfWidth = 0.0035;  ///< at its widest, a third of the way up
-  /// The teardrop's area weighted by flame.frag's radiance profile: radiance = intensity / this
-  /// sends the camera the light's intensity.
-  double effectiveArea() const;
-};
 
 /// Lights drawn as flames: point lights that follow a candle field, when render.flame is on.
 int flameCount(const FrameState& state);

@@ -47,6 +47,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("render.exposure_ev", [](S s) { return s.toneMap.exposureEv; }));
     t.push_back(setting("render.specular", [](S s) { return s.specular; }));
     t.push_back(setting("render.flame", [](S s) { return s.flame; }));
+    t.push_back(setting("flame.exposure_ev", [](S s) { return s.flameExposureEv; }));
     t.push_back(setting("field.res", [](S s) { return s.fieldRes; }));
     t.push_back(setting("field.placement", [](S s) { return s.fieldPlacement; }));
     t.push_back(setting("field.evaluate", [](S s) { return s.fieldOnGpu; }));
@@ -111,11 +112,14 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
         f << v.material << v.axis << v.period << v.fraction << v.turbulence << v.seed;
       }
     });
+    // A light that follows a candle's flame is placed and coloured by the flame at t (sceneAtTime),
+    // which flame.flicker changes: part of both.
     scene("scene.light_placement", [](Fingerprint& f, const FrameState& s) {
-      f << s.scene.lights.size();
+      f << s.scene.lights.size() << s.scene.flameFlicker;
       for (const Light& l : s.scene.lights) f << l.kind << l.direction << l.position << l.castsShadows;
     });
     scene("scene.light_intensity", [](Fingerprint& f, const FrameState& s) {
+      f << s.scene.flameFlicker;
       for (const Light& l : s.scene.lights) f << l.intensity;
     });
     scene("scene.camera", [](Fingerprint& f, const FrameState& s) {

@@ -132,6 +132,9 @@ struct RenderSettings {
   bool fieldOnGpu = true;
   bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
   bool flame = true;          ///< render.flame: the visible flame of a burning candle (sss/flame_pass.h)
+  /// flame.exposure_ev: the drawn flame's own exposure, stops (sss/flame_pass.h: a global exposure set
+  /// for the lit wax shows a flame white; the eye, adapting locally, sees it coloured).
+  float flameExposureEv = -2.5f;
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
   SssSettings sss;
   VplSettings vpl;

@@ -75,7 +75,8 @@ struct Light {
   glm::vec3 direction{0.0f, 1.0f, 0.0f};  ///< directional: unit vector from the scene toward the light
   glm::vec3 position{0.0f};               ///< point: metres
   /// Directional: irradiance on a surface facing the light [W/m²] per band.
-  /// Point: radiant intensity [W/sr] per band.
+  /// Point: radiant intensity [W/sr] per band. A light that follows a candle takes its colour and its
+  /// flicker from the flame (sceneAtTime): only the luminance of what is set here counts.
   glm::vec3 intensity{1.0f};
   bool castsShadows = true;
   /// Point: index in Scene::objects of the candle field whose flame the light sits at, following
@@ -117,6 +118,8 @@ struct Scene {
   float durationS = 0.0f;      ///< animation length in seconds; 0 = static scene
   bool loop = true;
   float startS = 0.0f;         ///< time of the first frame of `capture` and `view` unless --time is given
+  /// flame.flicker: how much a candle's flame flickers (geometry/candle_flame.h): 0 steady, 1 gentle.
+  float flameFlicker = 0.0f;
 };
 
 }  // namespace tallow::sss

@@ -265,7 +265,7 @@ TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
   const auto stats = nlohmann::json::parse(in);
   EXPECT_EQ(stats["preset"]["name"], "candle");
   EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("vpl")) << "the default preset lights the table with VPLs";
-  EXPECT_EQ(stats["frames"][0]["time_s"], 12.0) << "the candle's start_s";
+  EXPECT_EQ(stats["frames"][0]["time_s"], 16.0) << "the candle's start_s";
   EXPECT_EQ(stats["accumulate"], 16) << "a still frame: the maps accumulate as in a paused window";
   // The flame is drawn (issue 16, point 5), and each pass has its CPU time beside its GPU time.
   const auto& frame = stats["frames"][0];

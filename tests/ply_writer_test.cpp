@@ -55,6 +55,15 @@ TEST(PlyWriter, HeaderIsBinaryLittleEndianWithFloatNormalsAndUintLists) {
   EXPECT_EQ(back.normals[2], glm::vec3(0, 0, 1));
 }
 
+TEST(PlyWriter, CommentsGoInTheHeaderOneLineEach) {
+  const TriangleMesh mesh = makeSphere(4, 4);
+  const std::string bytes = encodePly(mesh, {"tallow.candle c t 8", "second"});
+  EXPECT_EQ(bytes.find("comment written by tallow\ncomment tallow.candle c t 8\ncomment second\nelement vertex"),
+            std::string("ply\nformat binary_little_endian 1.0\n").size());
+  EXPECT_EQ(parsePly(bytes, "m.ply").triangles, mesh.triangles);  // readers skip comments
+  EXPECT_THROW(encodePly(mesh, {"two\nlines"}), std::invalid_argument);
+}
+
 TEST(PlyWriter, EmptyMeshAndBadIndices) {
   // Written, though readPly refuses a mesh without faces (`tallow mesh` reports an empty surface first).
   const std::string empty = encodePly(TriangleMesh{});

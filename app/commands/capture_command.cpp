@@ -252,7 +252,10 @@ int runCapture(const CaptureOptions& options) {
       }
       frame.sss = mapsRecord(renderer);
       for (const sss::Light& l : sss::sceneAtTime(config.scene, frame.timeS).lights)
-        if (l.kind == sss::LightKind::Point) frame.pointLights.push_back(l.position);
+        if (l.kind == sss::LightKind::Point) {
+          frame.pointLights.push_back(l.position);
+          frame.pointLightIntensities.push_back(l.intensity);
+        }
       glFinish();
       renderer.resolveTimings(frame.gpu);  // the GPU is done: no wait
       frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

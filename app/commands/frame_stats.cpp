@@ -114,8 +114,9 @@ nlohmann::json frameJson(const FrameRecord& f) {
     cpu[p.name] = p.cpuMs;
     thread[p.name] = p.threadCpuMs;
   }
-  json lights = json::array();
+  json lights = json::array(), intensities = json::array();
   for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
+  for (const glm::vec3& i : f.pointLightIntensities) intensities.push_back({i.x, i.y, i.z});
   json frame = {{"index", f.index}, {"time_s", f.timeS}, {"wall_ms", f.wallMs},
                 {"gpu_ms", passes}, {"gpu_total_ms", finiteOrNull(f.gpu.gpuTotalMs)},
                 {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
@@ -124,6 +125,7 @@ nlohmann::json frameJson(const FrameRecord& f) {
                 {"translucent_change", finiteOrNull(f.translucentChange)},
                 {"reference_error", f.reference},
                 {"point_lights", lights},
+                {"point_light_intensities", intensities},
                 {"changed", f.changed},
                 {"sss", f.sss},
                 {"rss_bytes", f.rssBytes},

@@ -29,6 +29,7 @@ struct FrameRecord {
   /// The frame against capture's --reference (referenceErrorRecord; null without one).
   nlohmann::json reference;
   std::vector<glm::vec3> pointLights;  ///< where the point lights stood (flames move with their candle)
+  std::vector<glm::vec3> pointLightIntensities;  ///< and their intensity [W/sr] (a flame's flickers)
   /// Parameters whose value changed since the frame before (--script, the view's panel), {key: value}.
   nlohmann::json changed = nlohmann::json::object();
   /// The radiosity maps after this frame (null when none): K, F accumulated, their bytes.

@@ -9,12 +9,14 @@
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
+#include "geometry/candle_field.h"
 #include "geometry/cpu_mesher.h"
 #include "geometry/gpu_dual_contouring.h"
 #include "geometry/gpu_melt_field.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
 #include "sss/field_objects.h"
+#include "sss/field_source.h"
 
 namespace tallow::app {
 namespace {
@@ -112,12 +114,41 @@ geometry::TriangleMesh meshFields(const MeshOptions& options) {
   return world;
 }
 
+namespace {
+
+/// What the model of each candle field says of itself at t, as PLY comments (`comment tallow.candle
+/// NAME key value …`, field units): what scripts/results_melt.py compares its measurements of the
+/// mesh with.
+std::vector<std::string> modelComments(const MeshOptions& options) {
+  const LoadedScene loaded = loadScene(options.scene);
+  std::vector<std::string> comments;
+  for (const sss::SceneObject& o : loaded.config.scene.objects) {
+    if (o.shape != sss::ShapeKind::Field || o.field.kind != sss::FieldKind::Candle) continue;
+    const geometry::CandleField c(options.timeS, sss::candleParams(o.field));
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "tallow.candle %s t %.9g rim_height %.9g pool_y %.9g pool_radius %.9g pool_depth %.9g "
+                  "drips_started %d drips_frozen %d drip_volume %.9g puddle_volume %.9g puddle_area %.9g "
+                  "volume_target %.9g",
+                  o.name.empty() ? "candle" : o.name.c_str(), options.timeS, c.rimHeight(), c.poolY(), c.poolRadius(),
+                  c.poolDepth(), c.dripsStarted(), c.dripsFrozen(), c.dripVolume(), c.puddleVolume(), c.puddleArea(),
+                  c.volumeTarget());
+    std::string text = line;
+    for (char& ch : text)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    comments.push_back(text);
+  }
+  return comments;
+}
+
+}  // namespace
+
 int runMesh(const MeshOptions& options) {
   if (options.out.empty()) throw InputError("mesh: --out MESH.ply is required");
   const std::filesystem::path out(options.out);
   checkOutputFile("--out", out);
   const geometry::TriangleMesh mesh = meshFields(options);
-  geometry::writePly(out, mesh);
+  geometry::writePly(out, mesh, modelComments(options));
   std::printf("tallow: %zu triangle(s), %zu vertices (%s) -> %s\n", mesh.triangles.size(), mesh.positions.size(),
               options.cpu ? "OpenVDB volumeToMesh" : "GPU dual contouring", options.out.c_str());
   return 0;

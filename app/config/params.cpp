@@ -234,6 +234,26 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "has no flame to compare it with."),
                                true),
                    [](auto& c) -> auto& { return c.render.flame; }));
+  r.add(bind<float>(withDefault(declare("flame.exposure_ev", "float", "stops",
+                                        "The drawn flame's own exposure: its radiance × 2^ev before the picture's tone "
+                                        "map. A flame is a hundred times brighter than the wax it lights, so one "
+                                        "exposure shows it white where the eye, adapting locally, sees it yellow and "
+                                        "orange; the light it casts is its full flux whatever this is.",
+                                        -20, 20),
+                                -2.5f),
+                    [](auto& c) -> auto& { return c.render.flameExposureEv; }));
+  {
+    // Part of the scene (a preset's "settings" set it; no default of the registry's own): it moves
+    // and colours the lights that follow a candle's flame.
+    Param p = declare("flame.flicker", "float", "",
+                      "How much a candle's flame flickers, deterministic in t: 1 is gentle (about ±2.5% of brightness "
+                      "and ±3% of height, half a millimetre of sway at its centre), 0 a steady flame. The point light "
+                      "that follows the flame flickers with it.",
+                      0, 4);
+    p.getter = [](const Config& c) { return floatToJson(c.scene.flameFlicker); };
+    p.setter = [](Config& c, const json& v) { c.scene.flameFlicker = v.get<float>(); };
+    r.add(std::move(p));
+  }
   r.add(bind<int>(withDefault(declare("field.res", "int", "samples per axis",
                                       "Lattice resolution of field objects, isosurfaced on the GPU every frame.", 16,
                                       512),
