@@ -79,6 +79,8 @@ class CandleField final : public ScalarField {
   /// the hollow once it has formed (cupFormedS).
   glm::dvec3 flamePosition() const { return {0.0, shape_.flameY, 0.0}; }
   /// Animation seconds after which the hollow above the pool stands 90% of its full height.
+  /// The meniscus's radius where the pool meets the wall, metres (the outline's fillet; at most this).
+  static double meniscus() { return candle_f64::CANDLE_MENISCUS; }
   static double cupFormedS(const CandleParams& params) { return params.poolTauS() * std::log(10.0) / 1.5; }
   /// The box that holds the candle at every t (the lattice the renderer contours it on, fixed for
   /// the whole animation so that wax that does not change keeps its vertices).

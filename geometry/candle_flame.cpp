@@ -83,4 +83,6 @@ FlameEmission flameEmission(const CandleFlame& flame) {
 
 glm::dvec3 blackbodyColour(double kelvin) { return flame_f64::blackbodyRgb(kelvin); }
 
+glm::dvec3 flameProfileAt(double x, double v) { return flame_f64::flameProfile(x, v); }
+
 }  // namespace tallow::geometry

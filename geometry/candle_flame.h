@@ -46,6 +46,9 @@ struct FlameEmission {
 };
 FlameEmission flameEmission(const CandleFlame& flame);
 
+/// The flame's relative radiance at (x, v) of its sheet (shaders/flame/flame_profile.glsl, in double).
+glm::dvec3 flameProfileAt(double x, double v);
+
 /// Linear sRGB of a blackbody at `kelvin`, luminance 1 (shaders/flame/blackbody.glsl).
 glm::dvec3 blackbodyColour(double kelvin);
 

@@ -4,7 +4,9 @@
 // L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces (uTranslucent):
 // L = F_t(ω_o)/π · B (Eq. 5) + F_r(ω_o) · L_env(mirror direction): the specular reflection,
 // Fresnel-weighted, of the environment map, or of the uniform ambient sky when there is none
-// (render.specular off: no reflection). The frame's method (sss/translucency_method.h,
+// (render.specular off: no reflection), and of the candles' flames (flame/flame_mirror.glsl: the
+// melt pool's flat surface shows the flame). A candle's pool has its own material
+// (materials/slots.glsl): its η here, its BSSRDF in the gather. The frame's method (sss/translucency_method.h,
 // uTranslucentMethod) gives B: Algorithm 1 over the radiosity maps, the gather per pixel (no-cache),
 // the image-space accumulation at this pixel (peers/image_space/result.glsl) or B = π L_i of
 // SSLPV's Eq. 7 (peers/sslpv/lookup.glsl).
@@ -15,6 +17,7 @@
 #include "maps/vpl_receiver.glsl"
 #include "peers/image_space/result.glsl"
 #include "peers/sslpv/lookup.glsl"
+#include "flame/flame_mirror.glsl"
 
 // Depth test before shading: fragments behind what is already drawn cost no shading.
 layout(early_fragment_tests) in;
@@ -31,13 +34,20 @@ uniform int uTranslucent;  // 1: this object is shaded by the frame's method
 // The frame's method, sss::SurfaceShading: 1 Algorithm 1, 2 the gather (no-cache), 3 image-space,
 // 4 SSLPV.
 uniform int uTranslucentMethod;
-uniform int uSlot;         // the translucent slot of this object (the gather)
+uniform int uSlot;         // this object's main translucent slot (materials/slots.glsl), −1: none
 uniform int uSpecular;     // render.specular
 uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
 uniform sampler2D uEnvMap; // lat-long radiance (sss/maps/environment_lights.h conventions)
 uniform float uEnvRotation;  // radians about +y, counter-clockwise seen from above
 uniform float uEnvScale;
-uniform float uObjectEta;        // its relative index of refraction
+uniform float uObjectEta;        // its relative index of refraction (a translucent object: per slot)
+// The flames (sss::FlameSheet, as drawn): a mirror-like translucent surface reflects them.
+const int MAX_FLAMES = 8;
+uniform int uFlameCount;
+uniform vec3 uFlameBase[MAX_FLAMES];
+uniform vec3 uFlameUp[MAX_FLAMES];
+uniform vec3 uFlameSway[MAX_FLAMES];
+uniform vec3 uFlameSize[MAX_FLAMES];  // height, widest half-width, radiance per unit of flameProfile
 
 layout(location = 0) out vec4 oRadiance;
 layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it, b: opaque
@@ -65,21 +75,27 @@ void main() {
   vec3 toCamera = uCameraOrthographic != 0 ? -uCameraForward : uCameraPosition - vWorldPosition;
   bool backFacing = dot(n, toCamera) < 0.0;
   if (uTranslucent != 0) {
+    vec3 facing = backFacing ? -n : n;
+    int slot = surfaceSlot(uSlot, vWorldPosition, n);
+    float eta = slot >= 0 ? uSlotEta[slot] : uObjectEta;
     float seenBy = 1.0;
     int firstMap = -1, secondFacingMap = -1;
     vec3 b = uTranslucentMethod == 3 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
              : uTranslucentMethod == 2
-                 ? gatherScatteredRadiosity(vWorldPosition, backFacing ? -n : n, uvec2(gl_FragCoord.xy), 4095, uSlot)
+                 ? gatherScatteredRadiosity(vWorldPosition, facing, uvec2(gl_FragCoord.xy), 4095, slot)
              : uTranslucentMethod == 4 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
                                        : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy, firstMap,
                                                                             secondFacingMap);
     oCoverageBins = uTranslucentMethod == 1 ? uvec2(coverageBin(firstMap), coverageBin(secondFacingMap)) + 1u : uvec2(0u);
     vec3 v = normalize(toCamera);
-    vec3 facing = backFacing ? -n : n;
     float cosO = clamp(dot(facing, v), 0.0, 1.0);
-    vec3 mirrored = uEnvironment != 0 ? environmentRadiance(reflect(-v, facing)) : uAmbient;
-    vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, uObjectEta) * mirrored : vec3(0.0);
-    oRadiance = vec4(fresnelTransmittance(cosO, uObjectEta) / PI * b + specular, 1.0);
+    vec3 mirror = reflect(-v, facing);
+    vec3 mirrored = uEnvironment != 0 ? environmentRadiance(mirror) : uAmbient;
+    for (int f = 0; f < uFlameCount; ++f)
+      mirrored += uFlameSize[f].z * flameSeenAlong(vWorldPosition, mirror, uFlameBase[f], uFlameUp[f], uFlameSize[f].x,
+                                                   uFlameSize[f].y, uFlameSway[f]);
+    vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, eta) * mirrored : vec3(0.0);
+    oRadiance = vec4(fresnelTransmittance(cosO, eta) / PI * b + specular, 1.0);
     oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
     return;
   }

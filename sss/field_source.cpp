@@ -26,6 +26,10 @@ geometry::CandleParams candleParams(const FieldDesc& desc) {
 }
 
 namespace {
+/// How far (metres) a mesh vertex of the pool's flat surface may stand off it and still be liquid:
+/// half a lattice cell at the candle's default 128³ (0.59 mm cells) covers what dual contouring's
+/// vertex placement does at the pool's edge, and is well below the rim.
+constexpr float kLiquidTolerance = 0.0003f;
 double luminance(glm::dvec3 rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 }  // namespace
 
@@ -54,6 +58,15 @@ double FollowedFlame::radianceScale(const Light& placed) const {
 
 Scene sceneAtTime(const Scene& scene, double timeS) {
   Scene out = scene;
+  // A candle's melt pool at t: where its liquid surface is (shaders/materials/liquid_surface.glsl).
+  for (SceneObject& o : out.objects) {
+    o.liquidRegion = glm::vec4(0.0f);
+    if (!o.liquidMaterial || o.shape != ShapeKind::Field || o.field.kind != FieldKind::Candle) continue;
+    const geometry::CandleField candle(timeS, candleParams(o.field));
+    if (candle.poolDepth() > 0.0 && candle.poolRadius() > 0.0)
+      o.liquidRegion = glm::vec4(static_cast<float>(candle.poolY()), static_cast<float>(candle.poolRadius()),
+                                 static_cast<float>(geometry::CandleField::meniscus()), kLiquidTolerance);
+  }
   for (std::size_t i = 0; i < out.lights.size(); ++i) {
     Light& light = out.lights[i];
     if (light.follow < 0) continue;

@@ -2,11 +2,20 @@
 
 #include <cmath>
 
+#include "gpu/glsl_shared.h"
 #include "sss/field_source.h"
 #include "sss/light_uniforms.h"
 #include "sss/scene_geometry.h"
 
 namespace tallow::sss {
+
+namespace flame_mirror_f64 {
+using real = double;
+#include "gpu/glsl_real_types.inc"
+#include "shaders/flame/blackbody.glsl"
+#include "shaders/flame/flame_profile.glsl"
+#include "shaders/flame/flame_mirror.glsl"
+}  // namespace flame_mirror_f64
 
 namespace {
 
@@ -21,6 +30,30 @@ const SceneObject* followedCandle(const Scene& scene, const Light& light) {
 }
 
 }  // namespace
+
+std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const RenderSettings& settings) {
+  std::vector<FlameSheet> out;
+  if (!settings.flame) return out;
+  for (const Light& light : scene.lights) {
+    if (!followedCandle(scene, light)) continue;
+    const FollowedFlame f = followedFlame(scene, light, timeS);
+    const glm::vec3 axis(f.model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
+    FlameSheet s;
+    s.base = glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.base), 1.0f));
+    s.up = axis / f.scale;
+    s.height = static_cast<float>(f.flame.height) * f.scale;
+    s.halfWidth = static_cast<float>(f.flame.halfWidth) * f.scale;
+    s.sway = glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.sway), 0.0f));
+    s.radianceScale = static_cast<float>(f.radianceScale(light) * std::exp2(settings.flameExposureEv));
+    out.push_back(s);
+  }
+  return out;
+}
+
+glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const FlameSheet& s) {
+  return flame_mirror_f64::flameSeenAlong(origin, dir, glm::dvec3(s.base), glm::dvec3(s.up), double(s.height),
+                                          double(s.halfWidth), glm::dvec3(s.sway));
+}
 
 int flameCount(const FrameState& state) {
   if (!state.settings.flame) return 0;
@@ -64,18 +97,13 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   p.use();
   emptyVao_->bind();
   // The lights as sceneAtTime placed them: each the emission of the flame drawn here.
-  const Scene& scene = context.scene();
-  for (const Light& light : scene.lights) {
-    if (!followedCandle(scene, light)) continue;
-    const FollowedFlame f = followedFlame(scene, light, context.state.timeS);
-    const glm::vec3 axis(f.model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
-    const glm::vec3 up = axis / f.scale;
-    p.set("uBase", glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.base), 1.0f)));
-    p.set("uUp", up);
-    p.set("uHeight", static_cast<float>(f.flame.height) * f.scale);
-    p.set("uHalfWidth", static_cast<float>(f.flame.halfWidth) * f.scale);
-    p.set("uSway", glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.sway), 0.0f)));
-    p.set("uRadianceScale", static_cast<float>(f.radianceScale(light) * std::exp2(context.settings().flameExposureEv)));
+  for (const FlameSheet& s : flameSheets(context.scene(), context.state.timeS, context.settings())) {
+    p.set("uBase", s.base);
+    p.set("uUp", s.up);
+    p.set("uHeight", s.height);
+    p.set("uHalfWidth", s.halfWidth);
+    p.set("uSway", s.sway);
+    p.set("uRadianceScale", s.radianceScale);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 2 * kFlameRows);
   }
   glBindVertexArray(0);

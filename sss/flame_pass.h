@@ -9,6 +9,9 @@
 // emission centre the light's position.
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
@@ -18,6 +21,23 @@ namespace tallow::sss {
 
 /// Lights drawn as flames: point lights that follow a candle field, when render.flame is on.
 int flameCount(const FrameState& state);
+
+/// One drawn flame in world units (shaders/flame.vert's uniforms, shaders/flame/flame_mirror.glsl's
+/// arguments): its base on the axis, the axis, where the sway moves the tip, its height and widest
+/// half-width, and the radiance per unit of flameProfile as drawn (flame.exposure_ev included).
+struct FlameSheet {
+  glm::vec3 base{0.0f}, up{0.0f, 1.0f, 0.0f}, sway{0.0f};
+  float height = 0.0f, halfWidth = 0.0f, radianceScale = 0.0f;
+};
+
+/// The flames of `scene` (as sceneAtTime placed its lights) at t, as drawn; empty when render.flame
+/// is off.
+std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const RenderSettings& settings);
+
+/// What `sheet` shows to a viewer at `origin` looking along unit `dir`, per unit of radianceScale
+/// (shaders/flame/flame_mirror.glsl in double: the reflection surface.frag adds on a mirror-like
+/// translucent surface, the pool's above all).
+glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const FlameSheet& sheet);
 
 class FlamePass final : public FramePass {
  public:

@@ -106,7 +106,8 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     });
     scene("scene.materials", [](Fingerprint& f, const FrameState& s) {
       for (const SceneObject& o : s.scene.objects) {
-        f << o.material << o.volume.has_value();
+        f << o.material << o.volume.has_value() << o.liquidMaterial.has_value();
+        if (o.liquidMaterial) f << *o.liquidMaterial;  // the pool's region follows t ("time")
         if (!o.volume) continue;
         const MaterialVolume& v = *o.volume;
         f << v.material << v.axis << v.period << v.fraction << v.turbulence << v.seed;

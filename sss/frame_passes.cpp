@@ -131,7 +131,7 @@ PassIo CameraPass::io(const FrameState& state) const {
   PassIo io{{resource::kGeometry, resource::kShadowDirectional, resource::kShadowPoint, "scene.shapes", "scene.albedo",
              "scene.materials", "scene.light_placement", "scene.light_intensity", "scene.camera", "scene.environment",
              "scene.ambient", "scene.background", "render.width", "render.height", "render.shadows",
-             "render.shadow_bias", "render.pcf_radius", "render.specular", "method"},
+             "render.shadow_bias", "render.pcf_radius", "render.specular", "render.flame", "flame.exposure_ev", "method"},
             {resource::kCamera},
             {}};
   const PassIo m = method_->surfaceIo(state);

@@ -65,6 +65,13 @@ struct SceneObject {
   bool translucent = false;
   Material material;
   std::optional<MaterialVolume> volume;  ///< translucent objects only: a heterogeneous interior
+  /// A candle field's melt pool (preset key "pool_material"): the liquid part of its surface takes
+  /// this material (sss/translucent_slots.h). The radiosity maps, no-cache, the VPLs and the CPU
+  /// reference honour it; the peers shade the whole object with `material`.
+  std::optional<Material> liquidMaterial;
+  /// Where the liquid is at the frame's time, in object units (shaders/materials/liquid_surface.glsl's
+  /// region: pool surface y, radius, meniscus height, tolerance); set by sceneAtTime, radius 0: none.
+  glm::vec4 liquidRegion{0.0f};
   glm::vec3 albedo{0.8f};  ///< Lambertian reflectance of the opaque path, in [0, 1]
 };
 

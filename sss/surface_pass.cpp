@@ -1,9 +1,11 @@
 #include "sss/surface_pass.h"
 
 #include "gpu/hdr_io.h"
+#include "sss/flame_pass.h"
 #include "sss/light_uniforms.h"
 #include "sss/shadow_pass.h"
 #include "sss/translucency_method.h"
+#include "sss/translucent_slots.h"
 
 namespace tallow::sss {
 namespace {
@@ -42,6 +44,28 @@ void SurfacePass::render(const FrameContext& context) {
   p.set("uEnvRotation", glm::radians(environmentRotationDeg_));
   p.set("uEnvScale", environmentScale_);
   if (environment_.id()) environment_.bind(kEnvironmentUnit);
+  // Each translucent surface point's material (a candle's pool: the liquid's), and the flames a
+  // mirror-like surface reflects.
+  const SlotTable slots = translucentSlotTable(scene);
+  setSlotUniforms(p, slots, false);
+  constexpr int kMaxFlames = 8;  // surface.frag MAX_FLAMES
+  std::vector<FlameSheet> flames = flameSheets(scene, context.state.timeS, settings);
+  if (flames.size() > kMaxFlames) flames.resize(kMaxFlames);
+  std::vector<glm::vec3> flameBase, flameUp, flameSway, flameSize;
+  for (const FlameSheet& f : flames) {
+    flameBase.push_back(f.base);
+    flameUp.push_back(f.up);
+    flameSway.push_back(f.sway);
+    flameSize.emplace_back(f.height, f.halfWidth, f.radianceScale);
+  }
+  const int flameCount = static_cast<int>(flames.size());
+  p.set("uFlameCount", flameCount);
+  if (flameCount > 0) {
+    p.set("uFlameBase", flameBase.data(), flameCount);
+    p.set("uFlameUp", flameUp.data(), flameCount);
+    p.set("uFlameSway", flameSway.data(), flameCount);
+    p.set("uFlameSize", flameSize.data(), flameCount);
+  }
   const SurfaceShading shading = context.method.shading(context.state);
   p.set("uTranslucentMethod", static_cast<int>(shading));
   GLuint unit = kFirstMethodUnit;
@@ -64,6 +88,7 @@ void SurfacePass::render(const FrameContext& context) {
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
     const bool translucent = shading != SurfaceShading::None && object.translucent;
     p.set("uTranslucent", translucent ? 1 : 0);
+    p.set("uSlot", slots.objectSlot[static_cast<std::size_t>(item.objectIndex)]);
     if (translucent) context.method.bindSurfaceObject(p, context, item.objectIndex);
     p.set("uObjectEta", object.material.eta);
     item.draw();

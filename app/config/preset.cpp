@@ -57,7 +57,7 @@ const std::vector<std::string> kDirectionalKeys = {"type", "direction", "irradia
 const std::vector<std::string> kPointKeys = {"type", "position", "follow", "intensity", "shadows"};
 const std::vector<std::string> kObjectKeys = {"name",     "mesh",     "shape",        "size",  "material",
                                               "albedo",   "position", "rotation_deg", "scale", "field",
-                                              "volume"};
+                                              "volume",   "pool_material"};
 const std::vector<std::string> kBlobFieldKeys = {"type", "scale"};
 const std::vector<std::string> kCandleFieldKeys = {"type", "duration_s", "time_scale", "drips", "seed"};
 const std::vector<std::string> kMeshFieldKeys = {"type", "mesh", "melt_s"};
@@ -418,6 +418,16 @@ class PresetReader {
         doc_.failAtKey(p / "volume", "\"volume\" is a second material inside a translucent object; give the object a "
                                      "\"material\" first");
       object.volume = readVolume(p / "volume");
+    }
+    if (has(p, "pool_material")) {
+      // The liquid of a candle's melt pool (sss/translucent_slots.h): only a candle has one.
+      if (!isField || object.field.kind != sss::FieldKind::Candle)
+        doc_.failAtKey(p / "pool_material", "\"pool_material\" is the liquid of a candle's melt pool; this object is "
+                                            "not a candle field");
+      if (!object.translucent)
+        doc_.failAtKey(p / "pool_material", "\"pool_material\" needs a translucent candle; give the object a "
+                                            "\"material\" first");
+      object.liquidMaterial = readMaterial(p / "pool_material");
     }
     object.albedo = optVec3(p, "albedo", kAlbedo).value_or(object.albedo);
     object.transform.position = optVec3(p, "position", coordinates()).value_or(glm::vec3(0.0f));

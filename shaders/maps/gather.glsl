@@ -7,12 +7,11 @@
 #include "bssrdf/bssrdf.glsl"
 #include "maps/estimator.glsl"
 #include "maps/lights_gbuffer.glsl"
+#include "materials/slots.glsl"
 
-const int SSS_MAX_SLOTS = 8;
-uniform vec3 uSigmaA[SSS_MAX_SLOTS];    // mm⁻¹ per band
+uniform vec3 uSigmaA[SSS_MAX_SLOTS];    // mm⁻¹ per band (η: uSlotEta)
 uniform vec3 uSigmaS[SSS_MAX_SLOTS];
 uniform vec3 uG[SSS_MAX_SLOTS];
-uniform float uEta[SSS_MAX_SLOTS];
 uniform int uBssrdfModel;               // BSSRDF_MODEL_*
 uniform int uSamples;                   // N
 uniform int uFrame;                     // frame index of this accumulation (seeds)
@@ -23,8 +22,10 @@ uniform float uPointShare;              // point lights: the stereographic densi
 
 const float MM_PER_M = 1000.0;
 
-// B_N at one map texel: x_o [m] with unit normal n_o on translucent slot `slot`, texel (x, y) of
-// map `map` (the random streams), all lights, the three colour bands. Each sample is drawn once for
+// B_N at one map texel: x_o [m] with unit normal n_o on translucent slot `slot` (x_o's own: a
+// candle's pool point has the liquid's slot, surfaceSlot), texel (x, y) of map `map` (the random
+// streams), all lights, the three colour bands. Light enters anywhere on the same object (any of
+// its slots) and leaves with x_o's material's BSSRDF. Each sample is drawn once for
 // the three bands (sssDrawSharedSample, issue 17): one look-up, x_i, n_i and area ratio per sample,
 // then the term of Eq. 9 per band with that band's coefficients and the shared weight.
 vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int slot) {
@@ -32,7 +33,7 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
   BssrdfCoefficients k[3];
   vec3 sigmaTr;
   for (int c = 0; c < 3; ++c) {
-    k[c] = bssrdfCoefficients(uSigmaA[slot][c], uSigmaS[slot][c], uG[slot][c], uEta[slot]);
+    k[c] = bssrdfCoefficients(uSigmaA[slot][c], uSigmaS[slot][c], uG[slot][c], uSlotEta[slot]);
     sigmaTr[c] = sssSamplingSigmaTr(k[c]);
   }
   vec3 b = vec3(0.0);
@@ -46,7 +47,7 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
     float backlit = 0.0;
     if (uProjectedArea != 0 && uPointShare > 0.0) {
       GSample front = directionalGBuffer(l, xoWorld);
-      float depth = front.tag == slot + 1 ? dot(front.position * MM_PER_M - xo, w) : 0.0;
+      float depth = sameObjectTag(front.tag, slot) ? dot(front.position * MM_PER_M - xo, w) : 0.0;
       backlit = sssBacklitRadius(depth, min(sigmaTr.x, min(sigmaTr.y, sigmaTr.z)));
     }
     for (int j = 0; j < uSamples; ++j) {
@@ -54,7 +55,7 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
                                         backlit > 0.0 ? uPointShare : 0.0, texel.x, texel.y, uint(map),
                                         uint(uFrame), uint(j), uint(uSamples));
       GSample g = directionalGBuffer(l, s.xj / MM_PER_M);
-      if (g.tag != slot + 1) continue;  // another object or an occluder: x_j is not lit here
+      if (!sameObjectTag(g.tag, slot)) continue;  // another object or an occluder: x_j is not lit here
       // x_i keeps x_j's exact place across the light's view (the texel's centre would quantise
       // r to the G-buffer grid, which biases B where x_o sits at a fixed offset in that grid: an
       // aligned camera, a flat slab) and lies on the texel's tangent plane (sssPointOnTexel).
@@ -83,7 +84,7 @@ vec3 gatherScatteredRadiosity(vec3 xoWorld, vec3 no, uvec2 texel, int map, int s
                                         texel.x, texel.y, uint(map), uint(uFrame), uint(j), uint(uSamples));
       vec3 dir = uStereographic != 0 ? sssStereographicLookupDirection(xo, s.xj, xl) : sssPlanarLookupDirection(s.xj, xl);
       GSample g = pointGBuffer(l, dir);
-      if (g.tag != slot + 1) continue;
+      if (!sameObjectTag(g.tag, slot)) continue;
       // Along the exact look-up direction (as above: no quantisation of the direction to the
       // cube's texels), on the texel's tangent plane.
       vec3 ni = normalize(g.normal);

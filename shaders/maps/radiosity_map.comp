@@ -8,7 +8,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-uniform sampler2DArray uMapPosition;  // xyz: x_o [m], w: slot + 1 (0: no surface)
+uniform sampler2DArray uMapPosition;  // xyz: x_o [m], w: the surface's slot + 1 (0: no surface)
 uniform sampler2DArray uMapNormal;
 layout(rgba32f, binding = 0) uniform image2DArray uMaps;
 

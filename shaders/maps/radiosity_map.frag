@@ -8,11 +8,12 @@ in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 flat in int vLayer;
 
-uniform int uSlot;  // this object's translucent slot
+uniform int uSlot;  // this object's main translucent slot
 
 layout(location = 0) out vec4 oRadiosity;  // rgb: B_N [W/m²], a: 1 (counts frames)
 
 void main() {
-  vec3 b = gatherScatteredRadiosity(vWorldPosition, normalize(vWorldNormal), uvec2(gl_FragCoord.xy), vLayer, uSlot);
+  vec3 n = normalize(vWorldNormal);
+  vec3 b = gatherScatteredRadiosity(vWorldPosition, n, uvec2(gl_FragCoord.xy), vLayer, surfaceSlot(uSlot, vWorldPosition, n));
   oRadiosity = vec4(b, 1.0);
 }

@@ -5,6 +5,7 @@
 // and B(x_v)/π from Algorithm 1. The Fresnel factor F_t of Eq. 16 depends on the direction toward
 // the receiver, so the receiver applies it (vpl_receiver.glsl).
 #include "maps/algorithm1.glsl"
+#include "materials/slots.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -14,9 +15,8 @@ layout(std430, binding = 7) readonly buffer Directions { vec4 directions[]; };  
 
 uniform int uVplCount;                 // N_vpl
 uniform vec3 uCentre;                  // c, the cube's centre
-uniform samplerCube uCubePosition;     // xyz: surface point [m], w: slot + 1 (0: none)
+uniform samplerCube uCubePosition;     // xyz: surface point [m], w: the surface's slot + 1 (0: none)
 uniform samplerCube uCubeNormal;
-uniform float uSlotEta[8];             // η of each translucent slot
 uniform int uBacklitCount;             // surrounded point lights (placement backlit)
 uniform vec3 uBacklitFrom[8];
 uniform int uAreaMode;                 // 0: solid angle, 1: bounding box / N_vpl (the paper)

@@ -196,8 +196,4 @@ void NoCacheMethod::bindSurface(gpu::Program& p, const FrameContext& context, GL
     maps->setGatherUniforms(p, context.scene(), context.settings(), firstUnit, context.cameraFrame);
 }
 
-void NoCacheMethod::bindSurfaceObject(gpu::Program& p, const FrameContext& context, int objectIndex) const {
-  p.set("uSlot", context.modules.find<RadiosityMaps>()->slots()[static_cast<std::size_t>(objectIndex)]);
-}
-
 }  // namespace tallow::sss

@@ -86,7 +86,6 @@ class NoCacheMethod final : public TranslucencyMethod {
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 4; }  ///< the light G-buffers the gather reads
   void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
-  void bindSurfaceObject(gpu::Program& program, const FrameContext& context, int objectIndex) const override;
 
  private:
   std::shared_ptr<LightGBufferPass> gbuffer_;

@@ -189,11 +189,7 @@ bool RadiosityMaps::needsLightGBuffers(const Scene& scene, const RenderSettings&
 void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settings) {
   if (!needsLightGBuffers(scene, settings)) return;
   const SssSettings& s = settings.sss;
-  const auto translucent = std::count_if(scene.objects.begin(), scene.objects.end(),
-                                         [](const SceneObject& o) { return o.translucent; });
-  if (translucent > kMaxTranslucentObjects)
-    throw std::invalid_argument("the scene has " + std::to_string(translucent) + " translucent objects; the radiosity "
-                                "maps hold at most " + std::to_string(kMaxTranslucentObjects));
+  translucentSlotTable(scene);  // throws when the objects (and their pools) need more slots than the passes hold
   int dir = 0, point = 0;
   for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? dir : point)++;
   if (dir > kMaxSssDirectionalLights || point > kMaxSssPointLights)
@@ -249,10 +245,7 @@ void RadiosityMaps::ensureMapTargets(int k, int size) {
 
 void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings& settings,
                                         const SceneGeometry& geometry) {
-  slots_.assign(scene.objects.size(), -1);
-  int slot = 0;
-  for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].translucent) slots_[i] = slot++;
+  slotTable_ = translucentSlotTable(scene);
   sphere_ = translucentBounds(scene, geometry);
   shortestDiffusionMm_ = shortestDiffusionLengthMm(scene);
   GLint maxTexture = 0, maxCube = 0;
@@ -302,16 +295,16 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
 
   LayeredState state;
   gbufferProgram_.use();
+  setSlotUniforms(gbufferProgram_, slotTable_, false);
   glViewport(0, 0, size, size);
   const auto drawAll = [&](const std::vector<glm::mat4>& layers) {
     gbufferViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, gbufferViews_.id());
     gbufferProgram_.set("uLayerBase", 0);
     for (const DrawItem& item : geometry.items()) {
-      const int s = slots_[static_cast<std::size_t>(item.objectIndex)];
       gbufferProgram_.set("uModel", item.model);
       gbufferProgram_.set("uNormalMatrix", item.normalMatrix);
-      gbufferProgram_.set("uObjectTag", s + 1);
+      gbufferProgram_.set("uSlot", slotTable_.objectSlot[static_cast<std::size_t>(item.objectIndex)]);
       item.draw(static_cast<int>(layers.size()));
     }
   };
@@ -386,7 +379,7 @@ void RadiosityMaps::setGatherUniforms(gpu::Program& p, const Scene& scene, const
                                       GLuint firstUnit, int frame) const {
   const SssSettings& s = settings.sss;
   setLightUniforms(p, scene, firstUnit);
-  setSlotMaterialUniforms(p, scene, slots_);
+  setSlotUniforms(p, slotTable_, true);
   p.set("uBssrdfModel", static_cast<int>(s.model));
   p.set("uSamples", s.samples);
   p.set("uFrame", frame);
@@ -456,7 +449,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   LayeredState state;
   glViewport(0, 0, size, size);
   const auto drawTranslucent = [&](gpu::Program& program) {
-    drawTranslucentLayered(program, geometry, slots_, mapLayerViews_, k);
+    drawTranslucentLayered(program, geometry, slotTable_.objectSlot, mapLayerViews_, k);
   };
   const float zero[4] = {0, 0, 0, 0};
   const float one = 1.0f;
@@ -482,6 +475,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     const gpu::Framebuffer fb =
         gpu::boundGBuffer(mapPosition_, mapNormal_, mapDepth_, 1.0f, "scattered radiosity maps' G-buffer");
     mapGBufferProgram_.use();
+    setSlotUniforms(mapGBufferProgram_, slotTable_, false);
     drawTranslucent(mapGBufferProgram_);
   };
 

@@ -23,11 +23,12 @@
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
+#include "sss/translucent_slots.h"
 
 namespace tallow::sss {
 
 /// At most this many translucent objects (material slots) and lights of each kind per scene.
-inline constexpr int kMaxTranslucentObjects = 8;
+inline constexpr int kMaxTranslucentObjects = kMaxTranslucentSlots;
 inline constexpr int kMaxSssDirectionalLights = 32;
 inline constexpr int kMaxSssPointLights = 8;
 
@@ -147,7 +148,9 @@ class RadiosityMaps {
   void setAlgorithm1Uniforms(gpu::Program& program, const RenderSettings& settings, GLuint mapsUnit,
                              GLuint depthUnit, bool pixelLookups, bool countVplCoverage) const;
   /// Translucent slot of each scene object (−1 for opaque), valid after renderLightGBuffers.
-  const std::vector<int>& slots() const { return slots_; }
+  const std::vector<int>& slots() const { return slotTable_.objectSlot; }
+  /// The frame's slots with their materials and liquid parts (valid after renderLightGBuffers).
+  const SlotTable& slotTable() const { return slotTable_; }
   /// The directional light G-buffers (tests): normals, and per directional light (scene order of
   /// the directional lights) world → [0,1]³ and the sampling plane's basis.
   const gpu::Texture& directionalNormals() const { return dirNormal_; }
@@ -182,7 +185,7 @@ class RadiosityMaps {
   std::vector<MapView> views_;
   std::vector<glm::mat4> dirMatrices_;  ///< world → [0,1]³ of each directional light's G-buffer
   std::vector<glm::vec3> dirTangent_, dirBitangent_;
-  std::vector<int> slots_;
+  SlotTable slotTable_;
   BoundingSphere sphere_;
   BoundingSphere viewSphere_;  ///< the sphere views_ were made for
   int frames_ = 0;

@@ -212,6 +212,7 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
     const gpu::Framebuffer fb = gpu::boundGBuffer(cubePosition_, cubeNormal_, cubeDepth_, 0.0f, "VPL outermost-surface cube");
     glViewport(0, 0, cube, cube);
     cubeProgram_.use();
+    setSlotUniforms(cubeProgram_, maps.slotTable(), false);
     drawTranslucentLayered(cubeProgram_, geometry, maps.slots(), faceViews_, 6);
   }
 
@@ -219,10 +220,7 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   gpu::Program& p = compute_;
   p.use();
   maps.setAlgorithm1Uniforms(p, settings, kMapsUnit, kMapDepthUnit, false, countCoverage);
-  std::vector<float> eta(kMaxTranslucentObjects, 1.0f);
-  for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    if (maps.slots()[i] >= 0) eta[static_cast<std::size_t>(maps.slots()[i])] = scene.objects[i].material.eta;
-  glProgramUniform1fv(p.id(), p.location("uSlotEta"), kMaxTranslucentObjects, eta.data());
+  setSlotUniforms(p, maps.slotTable(), false);  // η per slot: the pool's VPLs leave through the liquid
   std::vector<glm::vec3> from;
   if (placement(scene, settings, geometry) == VplPlacement::Backlit) from = surroundedLights(scene, box.min, box.max);
   p.set("uBacklitCount", static_cast<int>(from.size()));

@@ -19,8 +19,10 @@
 #include "gpu/hdr_io.h"
 #include "sss/bssrdf/bssrdf.h"
 #include "sss/field_source.h"
+#include "sss/flame_pass.h"
 #include "sss/reference/parallel_for.h"
 #include "sss/scene_geometry.h"
+#include "sss/translucent_slots.h"
 #include "sss/view_setup.h"
 
 namespace tallow::sss {
@@ -217,16 +219,38 @@ class EnvironmentLookup {
   Environment env_;
 };
 
-/// A translucent object: its triangles by area, its material per band and the Russian-roulette rate.
-struct TranslucentObject {
-  const WorldMesh* mesh = nullptr;
-  std::vector<double> cdf;  ///< cumulative triangle areas [m²]
-  double areaMm2 = 0.0;
+/// A material per band, in double.
+struct MaterialBands {
   std::array<double, 3> sigmaA{}, sigmaS{}, g{};
   double eta = 1.3;
-  double rouletteRate = 0.0;  ///< the smallest band's σ_tr [mm⁻¹]
+};
+MaterialBands materialBands(const Material& m) {
+  MaterialBands b;
+  for (std::size_t c = 0; c < 3; ++c) {
+    b.sigmaA[c] = m.sigma_a[static_cast<int>(c)];
+    b.sigmaS[c] = m.sigma_s[static_cast<int>(c)];
+    b.g[c] = m.g[static_cast<int>(c)];
+  }
+  b.eta = m.eta;
+  return b;
+}
+
+/// A translucent object: its triangles by area, its materials per band and the Russian-roulette rate.
+struct TranslucentObject {
+  const WorldMesh* mesh = nullptr;
+  const SceneObject* object = nullptr;
+  std::vector<double> cdf;  ///< cumulative triangle areas [m²]
+  double areaMm2 = 0.0;
+  MaterialBands solid;                ///< the object's material
+  std::optional<MaterialBands> liquid;  ///< a candle's melt pool (sss/translucent_slots.h)
+  double rouletteRate = 0.0;  ///< the smallest band's σ_tr of its materials [mm⁻¹]
   double sigmaTpMax = 0.0;    ///< the largest band's σ_t' [mm⁻¹]
   int points = 0;             ///< M of this object
+
+  /// The material at a surface point (world metres, unit normal): the liquid's on the pool.
+  const MaterialBands& at(const glm::dvec3& x, const glm::dvec3& n) const {
+    return liquid && &materialAt(*object, x, n) == &*object->liquidMaterial ? *liquid : solid;
+  }
 };
 
 /// A point uniform by area on a translucent object: a triangle by its area (binary search in the
@@ -322,7 +346,9 @@ struct GatherStreams {
 /// object t (sorted into `cells`): π (A/M) Σ_i [u_i < q_i]/q_i Σ_ℓ S_d(x_i, w_ℓ; x_o) e_{i,ℓ} with
 /// q_i = exp(−σ_tr r_i), the roulette played per cell first (docs/reference.md, The estimator).
 /// Camera pixels and emitter points (emergent light) both gather through this.
-glm::dvec3 gatherRadiosity(const TranslucentObject& t, const std::vector<LitPoint>& points,
+/// x_o's material `mo` gives the BSSRDF (a pool point exits through the liquid; light entered
+/// anywhere on the object).
+glm::dvec3 gatherRadiosity(const TranslucentObject& t, const MaterialBands& mo, const std::vector<LitPoint>& points,
                            const std::vector<PointCell>& cells, const glm::dvec3& xoMm, const glm::dvec3& no,
                            BssrdfModel model, std::uint64_t seed, std::uint64_t pass, const GatherStreams& streams) {
   glm::dvec3 sum(0.0);
@@ -341,7 +367,7 @@ glm::dvec3 gatherRadiosity(const TranslucentObject& t, const std::vector<LitPoin
         for (int c = 0; c < 3; ++c) {
           const auto cc = static_cast<std::size_t>(c);
           if (!(e[c] > 0.0)) continue;
-          const BssrdfConfig cfg{p.xMm, p.n, wl, xoMm, no, t.sigmaA[cc], t.sigmaS[cc], t.g[cc], t.eta};
+          const BssrdfConfig cfg{p.xMm, p.n, wl, xoMm, no, mo.sigmaA[cc], mo.sigmaS[cc], mo.g[cc], mo.eta};
           sum[c] += evaluateBssrdf<double>(model, cfg).sdClamped * e[c] / survive;
         }
       }
@@ -362,6 +388,7 @@ struct Emitter {
 /// What a camera ray through a pixel centre sees; the same in every pass.
 struct PixelHit {
   int slot = -1;               ///< translucent object, or −1 (then `base` is the whole radiance)
+  const MaterialBands* material = nullptr;  ///< x_o's (the liquid's on a candle's pool)
   glm::dvec3 xoMm{0.0}, no{0.0};
   double transmit = 0.0;       ///< F_t(cos θ_o)/π
   glm::dvec3 base{0.0};        ///< background, opaque shading or the specular reflection
@@ -424,6 +451,8 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
   const bool sssOn = render.sss.method != SssMethod::Albedo;
   std::optional<EnvironmentLookup> environment;
   if (scene.environment && render.specular) environment.emplace(*scene.environment);
+  const std::vector<FlameSheet> flames = render.specular ? flameSheets(scene, settings.timeS, render)
+                                                         : std::vector<FlameSheet>{};
 
   // Translucent objects, by slot.
   std::vector<TranslucentObject> objects;
@@ -433,6 +462,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     if (!o.translucent || !sssOn) continue;
     TranslucentObject t;
     t.mesh = &meshes[k];
+    t.object = &o;
     double sum = 0.0;
     for (const auto& tri : meshes[k].triangles) {
       const glm::dvec3& a = meshes[k].positions[tri[0]];
@@ -440,17 +470,15 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       t.cdf.push_back(sum);
     }
     t.areaMm2 = sum * kMmPerM * kMmPerM;
-    t.eta = o.material.eta;
+    t.solid = materialBands(o.material);
+    if (o.liquidMaterial && o.liquidRegion.y > 0.0f) t.liquid = materialBands(*o.liquidMaterial);
     t.rouletteRate = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < 3; ++c) {
-      t.sigmaA[static_cast<std::size_t>(c)] = o.material.sigma_a[c];
-      t.sigmaS[static_cast<std::size_t>(c)] = o.material.sigma_s[c];
-      t.g[static_cast<std::size_t>(c)] = o.material.g[c];
-      const BssrdfCoefficients k =
-          bssrdfCoefficients(o.material.sigma_a[c], o.material.sigma_s[c], o.material.g[c], o.material.eta);
-      t.rouletteRate = std::min(t.rouletteRate, k.sigma_tr);
-      t.sigmaTpMax = std::max(t.sigmaTpMax, k.sigma_t_reduced);
-    }
+    for (const MaterialBands* b : {&t.solid, t.liquid ? &*t.liquid : &t.solid})
+      for (std::size_t c = 0; c < 3; ++c) {
+        const BssrdfCoefficients k = bssrdfCoefficients(b->sigmaA[c], b->sigmaS[c], b->g[c], b->eta);
+        t.rouletteRate = std::min(t.rouletteRate, k.sigma_tr);
+        t.sigmaTpMax = std::max(t.sigmaTpMax, k.sigma_t_reduced);
+      }
     const double nearArea = t.areaMm2 * t.sigmaTpMax * t.sigmaTpMax / kPi;  // A σ_t'²/π
     if (settings.pointsPerPass > 0)
       t.points = settings.pointsPerPass;
@@ -503,6 +531,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
         const glm::dvec3 xw = w0 * m.positions[tri[0]] + hit->u * m.positions[tri[1]] + hit->v * m.positions[tri[2]];
         glm::dvec3 n = w0 * m.normals[tri[0]] + hit->u * m.normals[tri[1]] + hit->v * m.normals[tri[2]];
         n = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
+        const glm::dvec3 rawNormal = n;  // as drawn: which slot a point is (surface.frag's surfaceSlot)
         const glm::dvec3 toCamera = -dir;
         if (glm::dot(n, toCamera) < 0.0) n = -n;  // open meshes show their inside, as surface.frag does
         const SceneObject& o = scene.objects[static_cast<std::size_t>(m.objectIndex)];
@@ -516,14 +545,19 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
           continue;
         }
         const double cosO = std::clamp(glm::dot(n, toCamera), 0.0, 1.0);
+        const TranslucentObject& t = objects[static_cast<std::size_t>(slot)];
         px.slot = slot;
+        px.material = &t.at(xw, rawNormal);
         px.xoMm = xw * kMmPerM;
         px.no = n;
-        px.transmit = fresnelTransmittance(cosO, o.material.eta) / kPi;
+        px.transmit = fresnelTransmittance(cosO, px.material->eta) / kPi;
         px.base = glm::dvec3(0.0);
         if (render.specular) {
-          const glm::dvec3 mirrored = environment ? environment->radiance(glm::reflect(dir, n)) : glm::dvec3(scene.ambient);
-          px.base = fresnelReflectance(cosO, o.material.eta) * mirrored;
+          const glm::dvec3 mirror = glm::reflect(dir, n);
+          glm::dvec3 mirrored = environment ? environment->radiance(mirror) : glm::dvec3(scene.ambient);
+          for (const FlameSheet& f : flames)  // surface.frag's flame reflection
+            mirrored += double(f.radianceScale) * flameSeenAlong(xw, mirror, f);
+          px.base = fresnelReflectance(cosO, px.material->eta) * mirrored;
         }
       }
   });
@@ -568,7 +602,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
             const double c = glm::dot(n, in.toLight);
             if (!(c > 0.0)) continue;  // faces away: the light G-buffer gives it no light either
             if (rays.occluded(x + offset * n, in.toLight, in.distance - 2.0 * offset)) continue;
-            const double ft = fresnelTransmittance(c, t.eta);
+            const double ft = fresnelTransmittance(c, t.at(x, n).eta);
             if (!(ft > 0.0)) continue;
             p.lights.emplace_back(in.toLight, in.irradiance * (ft * c));
           }
@@ -600,9 +634,11 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
             if (!sample) continue;
             const GatherStreams streams{kStreamEmitterCell, kStreamEmitterPoint,
                                         (static_cast<std::uint64_t>(s) << 32) | static_cast<std::uint64_t>(j)};
+            const MaterialBands& mo = t.at(sample->x, sample->n);
             e = {sample->x, sample->n,
-                 gatherRadiosity(t, lit[s], cellsOf[s], sample->x * kMmPerM, sample->n, model, settings.seed, pass, streams),
-                 t.eta, t.cdf.back() / N};
+                 gatherRadiosity(t, mo, lit[s], cellsOf[s], sample->x * kMmPerM, sample->n, model, settings.seed, pass,
+                                 streams),
+                 mo.eta, t.cdf.back() / N};
           }
         });
         for (const Emitter& e : made)
@@ -621,8 +657,8 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
           if (px.slot >= 0) {
             const auto slot = static_cast<std::size_t>(px.slot);
             const GatherStreams streams{kStreamPixelCell, kStreamPixelPoint, index};
-            value += px.transmit * gatherRadiosity(objects[slot], lit[slot], cellsOf[slot], px.xoMm, px.no, model,
-                                                   settings.seed, pass, streams);
+            value += px.transmit * gatherRadiosity(objects[slot], *px.material, lit[slot], cellsOf[slot], px.xoMm, px.no,
+                                                   model, settings.seed, pass, streams);
           } else if (px.receiver && emergent) {
             const glm::dvec3 e = emergentRadiance(px, emitters, rays, offset);
             value += e;

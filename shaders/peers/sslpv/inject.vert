@@ -6,9 +6,7 @@
 #include "maps/lights_gbuffer.glsl"
 #include "bssrdf/fresnel.glsl"
 #include "peers/sslpv/sh.glsl"
-
-const int SSS_MAX_SLOTS = 8;
-uniform float uEta[SSS_MAX_SLOTS];  // η of each translucent slot
+#include "materials/slots.glsl"  // uSlotEta: η of each translucent slot (RadiosityMaps::setGatherUniforms)
 uniform int uMapSize;               // texels per side of each G-buffer layer or cube face
 uniform vec3 uGridOrigin;           // m
 uniform float uGridCell;            // m
@@ -70,7 +68,7 @@ void main() {
   vec3 n = normalize(s.normal);
   float cosI = dot(n, toLight);
   if (cosI <= 0.0) return;  // the light grazes or is behind this surface
-  float eta = uEta[s.tag - 1];
+  float eta = uSlotEta[s.tag - 1];
   float t = fresnelTransmittance(cosI, eta);
   vec3 wt = refractedDirection(toLight, n, eta);  // ω_t, into the medium (Snell)
   // The cell half a cell inside the surface: the one the light enters through x_p.
