@@ -12,6 +12,7 @@ using real = double;
 #include "gpu/glsl_real_types.inc"
 #include "shaders/flame/blackbody.glsl"
 #include "shaders/flame/flame_profile.glsl"
+#include "shaders/flame/flame_mirror.glsl"
 }  // namespace flame_f64
 
 namespace {
@@ -84,5 +85,10 @@ FlameEmission flameEmission(const CandleFlame& flame) {
 glm::dvec3 blackbodyColour(double kelvin) { return flame_f64::blackbodyRgb(kelvin); }
 
 glm::dvec3 flameProfileAt(double x, double v) { return flame_f64::flameProfile(x, v); }
+
+glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& base, const glm::dvec3& up,
+                          double height, double halfWidth, const glm::dvec3& sway) {
+  return flame_f64::flameSeenAlong(origin, dir, base, up, height, halfWidth, sway);
+}
 
 }  // namespace tallow::geometry

@@ -49,6 +49,12 @@ FlameEmission flameEmission(const CandleFlame& flame);
 /// The flame's relative radiance at (x, v) of its sheet (shaders/flame/flame_profile.glsl, in double).
 glm::dvec3 flameProfileAt(double x, double v);
 
+/// What a flame's sheet (world base, unit axis, height, widest half-width, sway at the tip) shows to a
+/// viewer at `origin` looking along unit `dir`, per unit of radiance scale
+/// (shaders/flame/flame_mirror.glsl, in double).
+glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const glm::dvec3& base, const glm::dvec3& up,
+                          double height, double halfWidth, const glm::dvec3& sway);
+
 /// Linear sRGB of a blackbody at `kelvin`, luminance 1 (shaders/flame/blackbody.glsl).
 glm::dvec3 blackbodyColour(double kelvin);
 

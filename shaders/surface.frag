@@ -40,7 +40,6 @@ uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
 uniform sampler2D uEnvMap; // lat-long radiance (sss/maps/environment_lights.h conventions)
 uniform float uEnvRotation;  // radians about +y, counter-clockwise seen from above
 uniform float uEnvScale;
-uniform float uObjectEta;        // its relative index of refraction (a translucent object: per slot)
 // The flames (sss::FlameSheet, as drawn): a mirror-like translucent surface reflects them.
 const int MAX_FLAMES = 8;
 uniform int uFlameCount;
@@ -77,7 +76,7 @@ void main() {
   if (uTranslucent != 0) {
     vec3 facing = backFacing ? -n : n;
     int slot = surfaceSlot(uSlot, vWorldPosition, n);
-    float eta = slot >= 0 ? uSlotEta[slot] : uObjectEta;
+    float eta = uSlotEta[slot];  // a translucent object always has a slot
     float seenBy = 1.0;
     int firstMap = -1, secondFacingMap = -1;
     vec3 b = uTranslucentMethod == 3 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))

@@ -38,7 +38,6 @@ FollowedFlame followedFlame(const Scene& scene, const Light& light, double timeS
   if (o.shape != ShapeKind::Field || o.field.kind != FieldKind::Candle)
     throw std::invalid_argument("a light follows object \"" + o.name + "\", which is not a candle field");
   FollowedFlame f;
-  f.candle = &o;
   f.model = SceneGeometry::modelMatrix(o, geometry::Aabb{});
   f.scale = glm::length(glm::vec3(f.model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)));  // world per field unit
   f.flame = geometry::candleFlameAt(geometry::CandleField(timeS, candleParams(o.field)), scene.flameFlicker);

@@ -28,7 +28,6 @@ bool fieldAnimated(const FieldDesc& desc);
 /// (geometry::candleFlameAt with scene.flameFlicker) and what it emits. Throws std::invalid_argument
 /// when the object followed is not a candle field.
 struct FollowedFlame {
-  const SceneObject* candle = nullptr;
   glm::mat4 model{1.0f};  ///< the candle's object → world transform
   float scale = 1.0f;     ///< world units per field unit
   geometry::CandleFlame flame;      ///< field units

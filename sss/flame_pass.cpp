@@ -2,20 +2,11 @@
 
 #include <cmath>
 
-#include "gpu/glsl_shared.h"
 #include "sss/field_source.h"
 #include "sss/light_uniforms.h"
 #include "sss/scene_geometry.h"
 
 namespace tallow::sss {
-
-namespace flame_mirror_f64 {
-using real = double;
-#include "gpu/glsl_real_types.inc"
-#include "shaders/flame/blackbody.glsl"
-#include "shaders/flame/flame_profile.glsl"
-#include "shaders/flame/flame_mirror.glsl"
-}  // namespace flame_mirror_f64
 
 namespace {
 
@@ -51,8 +42,26 @@ std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const Rend
 }
 
 glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const FlameSheet& s) {
-  return flame_mirror_f64::flameSeenAlong(origin, dir, glm::dvec3(s.base), glm::dvec3(s.up), double(s.height),
-                                          double(s.halfWidth), glm::dvec3(s.sway));
+  return geometry::flameSeenAlong(origin, dir, glm::dvec3(s.base), glm::dvec3(s.up), double(s.height),
+                                  double(s.halfWidth), glm::dvec3(s.sway));
+}
+
+void setFlameMirrorUniforms(gpu::Program& p, const std::vector<FlameSheet>& flames) {
+  constexpr std::size_t kMaxFlames = 8;  // surface.frag MAX_FLAMES
+  std::vector<glm::vec3> base, up, sway, size;
+  for (std::size_t i = 0; i < flames.size() && i < kMaxFlames; ++i) {
+    base.push_back(flames[i].base);
+    up.push_back(flames[i].up);
+    sway.push_back(flames[i].sway);
+    size.emplace_back(flames[i].height, flames[i].halfWidth, flames[i].radianceScale);
+  }
+  const int count = static_cast<int>(base.size());
+  p.set("uFlameCount", count);
+  if (count == 0) return;
+  p.set("uFlameBase", base.data(), count);
+  p.set("uFlameUp", up.data(), count);
+  p.set("uFlameSway", sway.data(), count);
+  p.set("uFlameSize", size.data(), count);
 }
 
 int flameCount(const FrameState& state) {

@@ -39,6 +39,9 @@ std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const Rend
 /// translucent surface, the pool's above all).
 glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const FlameSheet& sheet);
 
+/// surface.frag's flame uniforms (uFlameCount and the sheets, at most its MAX_FLAMES = 8).
+void setFlameMirrorUniforms(gpu::Program& program, const std::vector<FlameSheet>& flames);
+
 class FlamePass final : public FramePass {
  public:
   std::string name() const override { return "flame"; }

@@ -44,29 +44,15 @@ void SurfacePass::render(const FrameContext& context) {
   p.set("uEnvRotation", glm::radians(environmentRotationDeg_));
   p.set("uEnvScale", environmentScale_);
   if (environment_.id()) environment_.bind(kEnvironmentUnit);
-  // Each translucent surface point's material (a candle's pool: the liquid's), and the flames a
-  // mirror-like surface reflects.
-  const SlotTable slots = translucentSlotTable(scene);
-  setSlotUniforms(p, slots, false);
-  constexpr int kMaxFlames = 8;  // surface.frag MAX_FLAMES
-  std::vector<FlameSheet> flames = flameSheets(scene, context.state.timeS, settings);
-  if (flames.size() > kMaxFlames) flames.resize(kMaxFlames);
-  std::vector<glm::vec3> flameBase, flameUp, flameSway, flameSize;
-  for (const FlameSheet& f : flames) {
-    flameBase.push_back(f.base);
-    flameUp.push_back(f.up);
-    flameSway.push_back(f.sway);
-    flameSize.emplace_back(f.height, f.halfWidth, f.radianceScale);
-  }
-  const int flameCount = static_cast<int>(flames.size());
-  p.set("uFlameCount", flameCount);
-  if (flameCount > 0) {
-    p.set("uFlameBase", flameBase.data(), flameCount);
-    p.set("uFlameUp", flameUp.data(), flameCount);
-    p.set("uFlameSway", flameSway.data(), flameCount);
-    p.set("uFlameSize", flameSize.data(), flameCount);
-  }
   const SurfaceShading shading = context.method.shading(context.state);
+  // Each translucent surface point's material (a candle's pool: the liquid's), when a method shades
+  // them, and the flames a mirror-like translucent surface reflects.
+  SlotTable slots;
+  if (shading != SurfaceShading::None) {
+    slots = translucentSlotTable(scene);
+    setSlotUniforms(p, slots, false);
+    setFlameMirrorUniforms(p, flameSheets(scene, context.state.timeS, settings));
+  }
   p.set("uTranslucentMethod", static_cast<int>(shading));
   GLuint unit = kFirstMethodUnit;
   for (const TranslucencyMethod* m : context.methods) {
@@ -88,9 +74,10 @@ void SurfacePass::render(const FrameContext& context) {
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
     const bool translucent = shading != SurfaceShading::None && object.translucent;
     p.set("uTranslucent", translucent ? 1 : 0);
-    p.set("uSlot", slots.objectSlot[static_cast<std::size_t>(item.objectIndex)]);
-    if (translucent) context.method.bindSurfaceObject(p, context, item.objectIndex);
-    p.set("uObjectEta", object.material.eta);
+    if (translucent) {
+      p.set("uSlot", slots.objectSlot[static_cast<std::size_t>(item.objectIndex)]);
+      context.method.bindSurfaceObject(p, context, item.objectIndex);
+    }
     item.draw();
   }
   glDisable(GL_DEPTH_TEST);

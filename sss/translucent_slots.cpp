@@ -14,6 +14,13 @@ using real = double;
 #include "shaders/materials/liquid_surface.glsl"
 }  // namespace liquid_f64
 
+namespace {
+/// A field's transform is rigid (SceneGeometry::modelMatrix: translation and rotation only).
+glm::dmat4 worldToObject(const SceneObject& o) {
+  return glm::inverse(glm::dmat4(SceneGeometry::modelMatrix(o, geometry::Aabb{})));
+}
+}  // namespace
+
 int translucentSlotsNeeded(const Scene& scene) {
   int n = 0;
   for (const SceneObject& o : scene.objects)
@@ -48,8 +55,7 @@ SlotTable translucentSlotTable(const Scene& scene) {
     if (!o.liquidMaterial) continue;
     const int liquid = t.count++;
     const auto l = static_cast<std::size_t>(liquid);
-    // A field's transform is rigid (SceneGeometry::modelMatrix: translation and rotation only).
-    const glm::mat4 toObject = glm::inverse(SceneGeometry::modelMatrix(o, geometry::Aabb{}));
+    const glm::mat4 toObject(worldToObject(o));
     t.slotObject[l] = static_cast<int>(i);
     t.material[l] = *o.liquidMaterial;
     for (const std::size_t k : {s, l}) {
@@ -65,12 +71,19 @@ bool liquidSurfaceContains(const glm::dvec3& p, const glm::dvec3& n, const glm::
   return liquid_f64::liquidSurfaceContains(p, n, glm::dvec4(region));
 }
 
+bool LiquidPart::contains(const glm::dvec3& worldPoint, const glm::dvec3& worldNormal) const {
+  const glm::dvec3 p(worldToObject * glm::dvec4(worldPoint, 1.0));
+  return liquidSurfaceContains(p, glm::dmat3(worldToObject) * worldNormal, region);
+}
+
+std::optional<LiquidPart> liquidPart(const SceneObject& object) {
+  if (!object.liquidMaterial || !(object.liquidRegion.y > 0.0f)) return std::nullopt;
+  return LiquidPart{worldToObject(object), object.liquidRegion};
+}
+
 const Material& materialAt(const SceneObject& object, const glm::dvec3& worldPoint, const glm::dvec3& worldNormal) {
-  if (!object.liquidMaterial || !(object.liquidRegion.y > 0.0f)) return object.material;
-  const glm::dmat4 toObject = glm::inverse(glm::dmat4(SceneGeometry::modelMatrix(object, geometry::Aabb{})));
-  const glm::dvec3 p(toObject * glm::dvec4(worldPoint, 1.0));
-  const glm::dvec3 n = glm::dmat3(toObject) * worldNormal;
-  return liquidSurfaceContains(p, n, object.liquidRegion) ? *object.liquidMaterial : object.material;
+  const std::optional<LiquidPart> part = liquidPart(object);
+  return part && part->contains(worldPoint, worldNormal) ? *object.liquidMaterial : object.material;
 }
 
 void setSlotUniforms(gpu::Program& p, const SlotTable& t, bool materials) {

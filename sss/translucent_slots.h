@@ -6,6 +6,7 @@
 // (materials/slots.glsl) and in C++ (materialAt) alike. Light scatters between the slots of one
 // object: the pool and the wax are one body, each point exits with its own material's BSSRDF.
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -39,8 +40,19 @@ int translucentSlotsNeeded(const Scene& scene);
 /// (shaders/materials/liquid_surface.glsl, in double).
 bool liquidSurfaceContains(const glm::dvec3& p, const glm::dvec3& n, const glm::vec4& region);
 
+/// Where an object's surface is liquid at the frame's t, ready to test many points.
+struct LiquidPart {
+  glm::dmat4 worldToObject{1.0};  ///< computed once (a field's transform is rigid)
+  glm::vec4 region{0.0f};         ///< SceneObject::liquidRegion
+  /// liquidSurfaceContains at a world point and normal.
+  bool contains(const glm::dvec3& worldPoint, const glm::dvec3& worldNormal) const;
+};
+
+/// The liquid part of `object` (as sceneAtTime left it), or none when it has no pool now.
+std::optional<LiquidPart> liquidPart(const SceneObject& object);
+
 /// The material at a surface point of `object` (world position and normal): the liquid's where
-/// liquidSurfaceContains says so, else the object's.
+/// liquidSurfaceContains says so, else the object's. Many points: test liquidPart(object) instead.
 const Material& materialAt(const SceneObject& object, const glm::dvec3& worldPoint, const glm::dvec3& worldNormal);
 
 /// Sets materials/slots.glsl's uniforms (those `p` uses, η per slot included) and, when `materials`,

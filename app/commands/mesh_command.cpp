@@ -91,9 +91,8 @@ sss::FieldMeshes drawnFieldMeshes(const LoadedScene& loaded, const std::string& 
   return meshEachField(placeFields(scene, loaded.presetName), loaded.config.render, timeS, meshing.shaders.get());
 }
 
-geometry::TriangleMesh meshFields(const MeshOptions& options) {
+geometry::TriangleMesh meshFields(const MeshOptions& options, LoadedScene& loaded) {
   checkTime("--time", options.timeS);
-  LoadedScene loaded = loadScene(options.scene);
   if (options.res != 0) {
     try {
       parameterRegistry(loaded.materials).set(loaded.config, "field.res", options.res);
@@ -119,8 +118,7 @@ namespace {
 /// What the model of each candle field says of itself at t, as PLY comments (`comment tallow.candle
 /// NAME key value …`, field units): what scripts/results_melt.py compares its measurements of the
 /// mesh with.
-std::vector<std::string> modelComments(const MeshOptions& options) {
-  const LoadedScene loaded = loadScene(options.scene);
+std::vector<std::string> modelComments(const MeshOptions& options, const LoadedScene& loaded) {
   std::vector<std::string> comments;
   for (const sss::SceneObject& o : loaded.config.scene.objects) {
     if (o.shape != sss::ShapeKind::Field || o.field.kind != sss::FieldKind::Candle) continue;
@@ -147,8 +145,9 @@ int runMesh(const MeshOptions& options) {
   if (options.out.empty()) throw InputError("mesh: --out MESH.ply is required");
   const std::filesystem::path out(options.out);
   checkOutputFile("--out", out);
-  const geometry::TriangleMesh mesh = meshFields(options);
-  geometry::writePly(out, mesh, modelComments(options));
+  LoadedScene loaded = loadScene(options.scene);
+  const geometry::TriangleMesh mesh = meshFields(options, loaded);
+  geometry::writePly(out, mesh, modelComments(options, loaded));
   std::printf("tallow: %zu triangle(s), %zu vertices (%s) -> %s\n", mesh.triangles.size(), mesh.positions.size(),
               options.cpu ? "OpenVDB volumeToMesh" : "GPU dual contouring", options.out.c_str());
   return 0;

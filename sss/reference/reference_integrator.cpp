@@ -238,18 +238,18 @@ MaterialBands materialBands(const Material& m) {
 /// A translucent object: its triangles by area, its materials per band and the Russian-roulette rate.
 struct TranslucentObject {
   const WorldMesh* mesh = nullptr;
-  const SceneObject* object = nullptr;
   std::vector<double> cdf;  ///< cumulative triangle areas [m²]
   double areaMm2 = 0.0;
   MaterialBands solid;                ///< the object's material
   std::optional<MaterialBands> liquid;  ///< a candle's melt pool (sss/translucent_slots.h)
+  std::optional<LiquidPart> liquidPart;  ///< where it is
   double rouletteRate = 0.0;  ///< the smallest band's σ_tr of its materials [mm⁻¹]
   double sigmaTpMax = 0.0;    ///< the largest band's σ_t' [mm⁻¹]
   int points = 0;             ///< M of this object
 
   /// The material at a surface point (world metres, unit normal): the liquid's on the pool.
   const MaterialBands& at(const glm::dvec3& x, const glm::dvec3& n) const {
-    return liquid && &materialAt(*object, x, n) == &*object->liquidMaterial ? *liquid : solid;
+    return liquidPart && liquidPart->contains(x, n) ? *liquid : solid;
   }
 };
 
@@ -462,7 +462,6 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     if (!o.translucent || !sssOn) continue;
     TranslucentObject t;
     t.mesh = &meshes[k];
-    t.object = &o;
     double sum = 0.0;
     for (const auto& tri : meshes[k].triangles) {
       const glm::dvec3& a = meshes[k].positions[tri[0]];
@@ -471,7 +470,8 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     }
     t.areaMm2 = sum * kMmPerM * kMmPerM;
     t.solid = materialBands(o.material);
-    if (o.liquidMaterial && o.liquidRegion.y > 0.0f) t.liquid = materialBands(*o.liquidMaterial);
+    t.liquidPart = liquidPart(o);
+    if (t.liquidPart) t.liquid = materialBands(*o.liquidMaterial);
     t.rouletteRate = std::numeric_limits<double>::infinity();
     for (const MaterialBands* b : {&t.solid, t.liquid ? &*t.liquid : &t.solid})
       for (std::size_t c = 0; c < 3; ++c) {
