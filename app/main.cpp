@@ -104,6 +104,10 @@ int main(int argc, char** argv) {
   referenceCmd->add_option("--points", reference.points, "surface points per translucent object and pass (0: automatic)");
   referenceCmd->add_option("--seed", reference.seed, "random seed");
   referenceCmd->add_option("--threads", reference.threads, "worker threads (0: all cores)");
+  referenceCmd->add_option("--pixel-filter", reference.pixelFilter,
+                           "box: each pass through its own point of the pixel (the mean over its square, as a "
+                           "still with render.aa), or centre: every pass through the pixel centre (default box)")
+      ->check(CLI::IsMember({"box", "centre"}));
   referenceCmd->add_flag(tallow::app::emergentFlag(), reference.emergent, "light leaving the translucent objects onto the receivers; =N: emitter points per object and pass (docs/reference.md)");
   referenceCmd->add_flag("--cpu-mesher", reference.cpuMesher, "mesh field objects with OpenVDB volumeToMesh instead of taking the GPU's triangles (docs/reference.md)");
   referenceCmd->add_option("--gl", reference.gl, "OpenGL context that contours field objects: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));

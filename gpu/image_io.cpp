@@ -550,24 +550,24 @@ Image readExrPixels(Imf::InputFile& file, const ExrPartInfo& layout) {
 // -----------------------------------------------------------------------------------------------
 // PNG
 
-std::vector<std::uint8_t> toneMappedRgb8(const Image& image, const ToneMapSettings& toneMap) {
+std::vector<std::uint8_t> toneMappedRgb8(const Image& image, const ToneMapSettings& toneMap, Dither dither) {
   constexpr int kChannels = 3;
-  constexpr float kMaxByte = 255.0f;
   std::vector<std::uint8_t> bytes(image.pixels.size() * kChannels);
-  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    const glm::vec3 srgb = toneMapToSrgb(glm::vec3(image.pixels[i]), toneMap);
-    for (int c = 0; c < kChannels; ++c) {
-      // NaN fails both comparisons and is stored as 0 rather than reaching the integer conversion.
-      const float v = srgb[c] >= 0.0f ? std::min(srgb[c], 1.0f) : 0.0f;
-      bytes[i * kChannels + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(v * kMaxByte));
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x);
+      const glm::vec3 srgb = toneMapToSrgb(glm::vec3(image.pixels[i]), toneMap);
+      // Dithered as the window is (shaders/common/tonemap.glsl); NaN is stored as 0.
+      const float offset = dither == Dither::On ? ditherLevels(x, y) : 0.0f;
+      for (int c = 0; c < kChannels; ++c)
+        bytes[i * kChannels + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(quantize8(srgb[c], offset));
     }
-  }
   return bytes;
 }
 
-void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap) {
+void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap, Dither dither) {
   checkPixelCount(path, image);
-  writePngRgb8(path, image.width, image.height, toneMappedRgb8(image, toneMap));
+  writePngRgb8(path, image.width, image.height, toneMappedRgb8(image, toneMap, dither));
 }
 
 void writePngRgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgb) {

@@ -18,10 +18,11 @@ namespace tallow::gpu {
 /// anything is allocated, so that a corrupt header cannot exhaust memory.
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
 
-/// Tone maps each pixel with toneMapToSrgb and stores 8-bit RGB, round(v × 255). Alpha is dropped.
-void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap);
+/// Tone maps each pixel with toneMapToSrgb and stores 8-bit RGB, round(v × 255 + dither). Alpha is dropped.
+void writePng(const std::filesystem::path& path, const Image& image, const ToneMapSettings& toneMap,
+              Dither dither = Dither::On);
 /// The bytes writePng stores: 8-bit sRGB, RGB interleaved, top row first.
-std::vector<std::uint8_t> toneMappedRgb8(const Image& image, const ToneMapSettings& toneMap);
+std::vector<std::uint8_t> toneMappedRgb8(const Image& image, const ToneMapSettings& toneMap, Dither dither = Dither::On);
 /// Writes 8-bit RGB bytes already display-encoded (e.g. a window read back), top row first.
 void writePngRgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgb);
 

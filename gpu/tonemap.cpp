@@ -21,6 +21,10 @@ glm::vec3 toneMapLinear(const glm::vec3& radiance, const ToneMapSettings& settin
 
 float srgbEncode(float linear) { return glsl::srgbEncode(linear); }
 
+float ditherLevels(int x, int y) { return glsl::ditherLevels(x, y); }
+
+float quantize8(float encoded, float dither) { return glsl::quantize8(encoded, dither); }
+
 ToneMap parseToneMap(std::string_view name) {
   if (name == "clamp") return ToneMap::Clamp;
   if (name == "reinhard") return ToneMap::Reinhard;

@@ -9,6 +9,11 @@ namespace tallow::gpu {
 
 enum class ToneMap { Clamp = 0, Reinhard = 1, Aces = 2, HuePreserving = 3 };
 
+/// Whether 8-bit output adds the triangular dither of shaders/common/tonemap.glsl before rounding
+/// (the window, PNGs, videos): On for pictures; Off rounds, round(v × 255) (tests of the rounding
+/// itself, and the display pass drawn into a float target).
+enum class Dither { Off, On };
+
 struct ToneMapSettings {
   ToneMap op = ToneMap::Aces;
   float exposureEv = 0.0f;  ///< stops; the linear scale is 2^ev
@@ -20,6 +25,10 @@ glm::vec3 toneMapToSrgb(const glm::vec3& radiance, const ToneMapSettings& settin
 glm::vec3 toneMapLinear(const glm::vec3& radiance, const ToneMapSettings& settings);
 /// The sRGB transfer function alone (IEC 61966-2-1).
 float srgbEncode(float linear);
+/// The 8-bit outputs' dither at pixel (x, y), in levels on (−1, 1), triangular (tonemap.glsl).
+float ditherLevels(int x, int y);
+/// An encoded value → its 8-bit level, dithered by `dither` levels; 0 and 1 (and NaN → 0) exact.
+float quantize8(float encoded, float dither);
 
 /// "clamp" | "reinhard" | "aces" | "hue-preserving"; throws std::invalid_argument otherwise.
 ToneMap parseToneMap(std::string_view name);

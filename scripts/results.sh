@@ -14,7 +14,8 @@
 # scripts/results_auto.py), and the animated default candle before and after issue 17 (point 5,
 # scripts/results_animated.py, which builds the earlier commit once), and a 10 000-frame capture's
 # bytes, time and memory per frame (issue 37, point 6, scripts/results_soak.py), and the melting
-# candle measured on its meshes (issue 35, point 6, scripts/results_melt.py). Every
+# candle measured on its meshes (issue 35, point 6, scripts/results_melt.py), and the clean picture
+# (issue 36: anti-aliasing, glare, dither; scripts/results_picture.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -68,6 +69,10 @@ TALLOW="$tallow" python3 "$root/scripts/results_animated.py" run "$work/animated
 # Issue 37, point 6: a 10 000-frame capture's bytes written, time between frames and memory.
 TALLOW="$tallow" python3 "$root/scripts/results_soak.py" run "$work/soak" ${quick:+--quick}
 TALLOW="$tallow" python3 "$root/scripts/results_melt.py" run "$work/melt" ${quick:+--quick}
+# Issue 36: the clean picture: anti-aliased stills, the glare, the dither (captures and the GL tests
+# that measure against independent answers).
+TALLOW="$tallow" TALLOW_GLTESTS="$build/tests/tallow_gltests" TALLOW_TESTS="$build/tests/tallow_tests" \
+  python3 "$root/scripts/results_picture.py" run "$work/picture" ${quick:+--quick}
 
 python3 - "$work/extraction.json" "$root/docs/RESULTS.md.tmp" "$repeats" "$(nproc 2>/dev/null || echo '?')" "$work/maps.json" "$work/gather_fragment.json" "$work/gather_compute.json" <<'PY'
 import json, sys, datetime, platform
@@ -239,6 +244,7 @@ python3 "$root/scripts/results_auto.py" report "$work/auto" "$root/docs/RESULTS.
 python3 "$root/scripts/results_animated.py" report "$work/animated" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_soak.py" report "$work/soak" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_melt.py" report "$work/melt" "$root/docs/RESULTS.md.tmp"
+python3 "$root/scripts/results_picture.py" report "$work/picture" "$root/docs/RESULTS.md.tmp"
 # Issue 18: a GPU run of the device bench, copied into docs/gpu/, or the statement that none exists.
 python3 "$root/scripts/results_bench.py" gpu "$root/docs/gpu" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"

@@ -8,7 +8,8 @@ DisplayPass::DisplayPass(const gpu::ShaderLibrary& shaders)
     : program_(shaders, {{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}}}) {}
 
 void DisplayPass::render(const gpu::Texture& radiance, GLuint target, int width, int height,
-                         const gpu::ToneMapSettings& toneMap) {
+                         const gpu::ToneMapSettings& toneMap, gpu::Dither dither) {
+  program_.set("uDither", dither == gpu::Dither::On ? 1 : 0);
   program_.set("uRadiance", 0);
   program_.set("uExposureScale", std::exp2(toneMap.exposureEv));
   program_.set("uToneMap", static_cast<int>(toneMap.op));

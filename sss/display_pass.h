@@ -9,8 +9,10 @@ namespace tallow::sss {
 class DisplayPass {
  public:
   explicit DisplayPass(const gpu::ShaderLibrary& shaders);
-  /// Draws `radiance` tone mapped into framebuffer `target` (0 = the window) over its viewport.
-  void render(const gpu::Texture& radiance, GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap);
+  /// Draws `radiance` tone mapped into framebuffer `target` (0 = the window) over its viewport, as
+  /// 8-bit levels dithered like the PNG writer's (Dither::On), or as the encoded values themselves.
+  void render(const gpu::Texture& radiance, GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap,
+              gpu::Dither dither = gpu::Dither::On);
 
  private:
   gpu::Program program_;

@@ -1,10 +1,14 @@
 #include "sss/frame_passes.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
+#include "sss/bloom.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/shadow_pass.h"
+#include "sss/still_average.h"
 #include "sss/surface_pass.h"
 #include "sss/translucency_method.h"
 
@@ -155,6 +159,43 @@ void CameraPass::run(FrameContext& context, bool /*changed*/) {
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_DEPTH, 0, &one);
   context.cameraFrame = frame_++;
   context.modules.find<SurfacePass>()->render(context);
+}
+
+// --- the glare ------------------------------------------------------------------------------------
+
+std::string BloomPass::reason(const FrameState& state) const {
+  char share[32];
+  std::snprintf(share, sizeof share, "%g", double(state.settings.bloom));
+  return std::string("render.bloom = ") + share +
+         ": that share of the light above white spread by a glare PSF (1/r² over 2 to 64 pixels, flux kept) "
+         "into the picture shown; the radiance (EXR) unchanged";
+}
+
+PassIo BloomPass::io(const FrameState&) const {
+  // It also reads render.exposure_ev (white is where the exposure puts it), a display-only input
+  // that no pass declares: the pass runs after every camera pass (runsAgain) and so always sees
+  // the exposure of its frame.
+  return {{resource::kCamera, "render.bloom"}, {}, {}};
+}
+
+void BloomPass::run(FrameContext& context, bool /*changed*/) {
+  const RenderSettings& s = context.settings();
+  context.modules.obtain<Bloom>(context.shaders).apply(context.target.radiance, s.bloom, std::exp2(s.toneMap.exposureEv));
+}
+
+// --- the still's average ----------------------------------------------------------------------------
+
+std::string StillAveragePass::reason(const FrameState& state) const {
+  return "render.aa = " + std::to_string(state.settings.aaSamples) +
+         ": while nothing changes, each frame drawn at the next sub-pixel position and averaged into the "
+         "picture (anti-aliased edges, the translucent estimate weighted by its samples)";
+}
+
+PassIo StillAveragePass::io(const FrameState&) const { return {{resource::kCamera, "render.aa"}, {}, {}}; }
+
+void StillAveragePass::run(FrameContext& context, bool /*changed*/) {
+  context.modules.obtain<StillAverage>(context.shaders)
+      .add(context.target.radiance, context.method.stillWeight(context), context.stillFrame == 0);
 }
 
 }  // namespace tallow::sss

@@ -78,4 +78,30 @@ class CameraPass final : public FramePass {
   int accumulation_ = 0;       ///< FrameState::accumulation of the last frame
 };
 
+/// camera.still (render.aa > 1): the frame just drawn folded into the still's weighted mean in the
+/// camera target (sss/still_average.h); the renderer restarts the mean whenever a pass of the frame
+/// ran with changed inputs, and moves the camera by the next sub-pixel offset otherwise.
+class StillAveragePass final : public FramePass {
+ public:
+  std::string name() const override { return "camera.still"; }
+  bool needed(const FrameState& state) const override { return state.settings.aaSamples > 1; }
+  std::string reason(const FrameState& state) const override;
+  PassIo io(const FrameState& state) const override;
+  bool runsAgain(const FrameState&) const override { return true; }  // after every camera pass
+  void run(FrameContext& context, bool changed) override;
+};
+
+/// camera.bloom (render.bloom > 0): the glare of the picture's bright light, an energy-conserving
+/// PSF (sss/bloom.h), into the picture that is shown (window, PNG, video); the radiance stays.
+class BloomPass final : public FramePass {
+ public:
+  std::string name() const override { return "camera.bloom"; }
+  bool needed(const FrameState& state) const override { return state.settings.bloom > 0.0f; }
+  std::string reason(const FrameState& state) const override;
+  PassIo io(const FrameState& state) const override;
+  bool runsAgain(const FrameState&) const override { return true; }  // after every camera pass
+  bool afterPicture() const override { return true; }
+  void run(FrameContext& context, bool changed) override;
+};
+
 }  // namespace tallow::sss

@@ -49,6 +49,8 @@ class FramePlan {
   std::vector<const TranslucencyMethod*> methodViews_;
   CameraPass camera_;
   FlamePass flame_;
+  StillAveragePass still_;
+  BloomPass bloom_;
 };
 
 }  // namespace tallow::sss

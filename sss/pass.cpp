@@ -22,7 +22,17 @@ void CameraTarget::ensure(int width, int height) {
 
 CameraView FrameContext::camera() const {
   const float aspect = static_cast<float>(settings().width) / static_cast<float>(settings().height);
-  return cameraView(scene().camera, aspect, geometry.worldBounds());
+  CameraView view = cameraView(scene().camera, aspect, geometry.worldBounds());
+  if (cameraJitter != glm::vec2(0.0f)) {
+    // A shift of the image by the offset: NDC moves 2 / size per pixel, for perspective and
+    // orthographic cameras alike (the translation acts on clip coordinates before the divide).
+    glm::mat4 shift(1.0f);
+    shift[3][0] = 2.0f * cameraJitter.x / static_cast<float>(settings().width);
+    shift[3][1] = 2.0f * cameraJitter.y / static_cast<float>(settings().height);
+    view.projection = shift * view.projection;
+    view.viewProjection = view.projection * view.view;
+  }
+  return view;
 }
 
 }  // namespace tallow::sss

@@ -112,9 +112,14 @@ struct FrameContext {
   /// sss.maps=auto: Algorithm 1's callers count which map first sees each point into the buffer the
   /// renderer bound (sss/maps/map_coverage_probe.h).
   bool countMapCoverage = false;
+  /// render.aa: this frame's place in the still (0: the still starts, nothing is averaged yet) and
+  /// the camera's sub-pixel offset for it, in pixels (sss/pixel_jitter.h; (0, 0) at stillFrame 0).
+  int stillFrame = 0;
+  glm::vec2 cameraJitter{0.0f};
   const Scene& scene() const { return state.scene; }
   const RenderSettings& settings() const { return state.settings; }
-  /// The scene camera for the target's aspect ratio, fitted to the geometry's bounds.
+  /// The scene camera for the target's aspect ratio, fitted to the geometry's bounds, moved by
+  /// cameraJitter (every pass that draws for the camera target sees the same sub-pixel offset).
   CameraView camera() const;
 };
 
@@ -128,6 +133,9 @@ class Pass {
   virtual PassIo io(const FrameState& state) const = 0;
   /// True when the pass wants to run although nothing it reads changed (see the file comment).
   virtual bool runsAgain(const FrameState& /*state*/) const { return false; }
+  /// True for a pass that only makes the picture shown from the finished picture (the glare): its
+  /// changed inputs do not restart a still's average (render.aa).
+  virtual bool afterPicture() const { return false; }
   /// Runs the pass; `changed`: an input or a resource's epoch changed since its last run (or it
   /// never ran, or the renderer forgot everything): progressive passes restart.
   virtual void run(FrameContext& context, bool changed) = 0;

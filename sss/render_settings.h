@@ -136,6 +136,12 @@ struct RenderSettings {
   /// for the lit wax shows a flame white; the eye, adapting locally, sees it coloured).
   float flameExposureEv = -2.5f;
   gpu::ToneMapSettings toneMap;  ///< render.tonemap, render.exposure_ev
+  /// render.aa: sub-pixel positions a still cycles through while its frames are averaged
+  /// (sss/still_average.h); 1 draws every frame at the pixel centres and averages nothing.
+  int aaSamples = 1;
+  /// render.bloom: the share of the picture's light the glare PSF spreads in the picture shown
+  /// (sss/bloom.h); 0: off.
+  float bloom = 0.0f;
   SssSettings sss;
   VplSettings vpl;
   ImageSpaceSettings imageSpace;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "gpu/readback.h"
+#include "sss/bloom.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/maps/radiosity_maps.h"
@@ -15,6 +16,7 @@
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
 #include "sss/memory_budget.h"
+#include "sss/pixel_jitter.h"
 
 namespace tallow::sss {
 namespace {
@@ -173,7 +175,18 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   context.invalidated = forget_;
   context.countMapCoverage = countCoverage && coverageProbe_.begin(settings.sss.maps);
   std::map<std::string, Stamp> before = resources_;
-  for (const auto& [pass, d] : schedule(state, resources_)) {
+  const std::vector<std::pair<Pass*, Due>> due = schedule(state, resources_);
+  // render.aa: a frame in which no pass runs with changed inputs continues the still (the same
+  // picture, more samples); its camera moves to the next sub-pixel position. Otherwise the still
+  // restarts at the pixel centres.
+  const bool still = !forget_ && std::none_of(due.begin(), due.end(), [](const auto& p) {
+    return p.second == Due::Changed && !p.first->afterPicture();
+  });
+  stillFrame_ = still ? stillFrame_ + 1 : 0;
+  context.stillFrame = stillFrame_;
+  if (settings.aaSamples > 1)
+    context.cameraJitter = glm::vec2(pixelJitter(static_cast<unsigned>(stillFrame_ % settings.aaSamples)));
+  for (const auto& [pass, d] : due) {
     {
       const auto start = std::chrono::steady_clock::now();
       const double threadStart = threadCpuMs();
@@ -201,6 +214,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
     for (const std::string& w : io.writes) before[w] = resources_[w];
   }
   forget_ = false;
+  bloomed_ = settings.bloom > 0.0f;
   if (context.countMapCoverage) coverageProbe_.end();
   // No wait here: this frame's GPU times are read later (resolveTimings, latestTimings).
   pending_.push_back(t);
@@ -235,8 +249,18 @@ void Renderer::restartAccumulation() { ++accumulation_; }
 
 void Renderer::invalidate() { forget_ = true; }
 
+const gpu::Texture& Renderer::shown() const {
+  const Bloom* bloom = modules_.find<Bloom>();
+  return bloomed_ && bloom ? bloom->output() : target_.radiance;
+}
+
 void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap) {
-  display_.render(target_.radiance, target, width, height, toneMap);
+  display_.render(shown(), target, width, height, toneMap);
+}
+
+gpu::Image Renderer::readShown() const {
+  if (&shown() == &target_.radiance) return readRadiance();
+  return gpu::readTexture(shown());
 }
 
 gpu::Image Renderer::readRadiance() const {

@@ -84,6 +84,9 @@ class Renderer {
   void display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap);
 
   gpu::Image readRadiance() const;  ///< the last frame, linear, top row first
+  /// The picture shown of the last frame (what display() tone-maps, PNGs and videos are made of):
+  /// the radiance with render.bloom's glare when it is on, the radiance itself otherwise.
+  gpu::Image readShown() const;
   /// Coverage of the last frame by the radiosity maps (reads the frame back: for stats and tests).
   MapCoverage mapCoverage() const;
   /// Per pixel of the last frame (top row first): 1 where the camera sees an opaque surface (a
@@ -155,6 +158,10 @@ class Renderer {
   mutable FramePlan plan_;  ///< mutable: listing the plan points the camera pass at the frame's method
   std::unordered_map<const Pass*, PassRecord> records_;
   std::map<std::string, Stamp> resources_;
+  bool bloomed_ = false;  ///< the last frame ran camera.bloom: the picture shown is the Bloom module's
+  /// The texture display() tone-maps: the glare's output after camera.bloom, the radiance otherwise.
+  const gpu::Texture& shown() const;
+  int stillFrame_ = 0;    ///< render.aa: frames since the still began (FrameContext::stillFrame)
   int accumulation_ = 0;  ///< restartAccumulation() calls: the input "accumulation"
   bool forget_ = false;   ///< invalidate(): every pass of the next frame runs as changed
   DisplayPass display_;

@@ -50,6 +50,10 @@ class TranslucencyMethod {
   virtual void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const = 0;
   /// Per translucent object, before its draw in the camera pass (the active method only).
   virtual void bindSurfaceObject(gpu::Program& /*program*/, const FrameContext& /*context*/, int /*objectIndex*/) const {}
+  /// The weight of this frame's picture in a still's average (render.aa, sss/still_average.h): the
+  /// samples its translucent estimate holds, relative to one frame's. A progressive method's frame k
+  /// holds k frames of samples; a method that draws fresh samples each frame (or none) weighs 1.
+  virtual double stillWeight(const FrameContext& /*context*/) const { return 1.0; }
 };
 
 /// True when the scene has a translucent object.

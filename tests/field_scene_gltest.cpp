@@ -38,7 +38,9 @@ std::vector<std::string> fieldSceneSets(int res = 32) {
           "field.res=" + std::to_string(res),
           // Small radiosity maps, converged after one frame: a frame that changes nothing
           // then draws exactly the same image (only step 3 runs).
-          "sss.maps=6", "sss.samples=4", "sss.map_size=128", "sss.light_map_size=128", "sss.frames=1"};
+          "sss.maps=6", "sss.samples=4", "sss.map_size=128", "sss.light_map_size=128", "sss.frames=1",
+          // Every frame at the pixel centres (a still's average is StillAverage.*'s).
+          "render.aa=1"};
 }
 
 /// Renders the frame at t, expecting no GL error; returns its linear radiance.

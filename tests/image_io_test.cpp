@@ -156,7 +156,7 @@ TEST(PngIo, RoundTripGivesToneMappedSrgbBytes) {
       image.at(x, y) = glm::vec4(y == 0 ? v : 0.0f, y == 1 ? v : 0.0f, y == 2 ? v : 0.0f, 0.25f);
     }
   const fs::path file = dir.path() / "ramp.png";
-  writePng(file, image, ToneMapSettings{ToneMap::Clamp, 0.0f});
+  writePng(file, image, ToneMapSettings{ToneMap::Clamp, 0.0f}, Dither::Off);
   const Image back = readPng(file);
   ASSERT_EQ(back.width, image.width);
   ASSERT_EQ(back.height, image.height);
@@ -179,13 +179,13 @@ TEST(PngIo, MiddleGreyRoundsHalfUpAndExposureScales) {
   image.at(0, 0) = glm::vec4(glm::vec3(static_cast<float>(middle + kStep)), 1.0f);
   image.at(1, 0) = glm::vec4(glm::vec3(static_cast<float>(middle - kStep)), 1.0f);
   image.at(2, 0) = glm::vec4(glm::vec3(static_cast<float>((middle + kStep) / 2.0)), 1.0f);
-  writePng(dir.path() / "grey.png", image, ToneMapSettings{ToneMap::Clamp, 0.0f});
+  writePng(dir.path() / "grey.png", image, ToneMapSettings{ToneMap::Clamp, 0.0f}, Dither::Off);
   Image back = readPng(dir.path() / "grey.png");
   EXPECT_EQ(std::lround(back.at(0, 0).r * 255.0f), 128);
   EXPECT_EQ(std::lround(back.at(1, 0).r * 255.0f), 127);
   // Half of it, without exposure: sRGB 0.3613 → byte 92.
   EXPECT_EQ(std::lround(back.at(2, 0).r * 255.0f), std::lround(srgbReference((middle + kStep) / 2.0) * 255.0));
-  writePng(dir.path() / "grey.png", image, ToneMapSettings{ToneMap::Clamp, 1.0f});  // +1 EV doubles
+  writePng(dir.path() / "grey.png", image, ToneMapSettings{ToneMap::Clamp, 1.0f}, Dither::Off);  // +1 EV doubles
   back = readPng(dir.path() / "grey.png");
   EXPECT_EQ(std::lround(back.at(2, 0).r * 255.0f), 128);
 }
@@ -196,7 +196,7 @@ TEST(PngIo, UsesTheDisplayToneMap) {
   image.at(0, 0) = glm::vec4(0.3f, 2.0f, 10.0f, 1.0f);
   image.at(1, 0) = glm::vec4(std::nanf(""), INFINITY, -INFINITY, 1.0f);
   const ToneMapSettings aces{ToneMap::Aces, 0.5f};
-  writePng(dir.path() / "aces.png", image, aces);
+  writePng(dir.path() / "aces.png", image, aces, Dither::Off);
   const Image back = readPng(dir.path() / "aces.png");
   const glm::vec3 expected = toneMapToSrgb(glm::vec3(image.at(0, 0)), aces);
   for (int c = 0; c < 3; ++c) EXPECT_EQ(std::lround(back.at(0, 0)[c] * 255.0f), std::lround(expected[c] * 255.0f));

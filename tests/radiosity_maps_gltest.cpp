@@ -446,8 +446,9 @@ TEST(RadiosityMaps, AccumulatedMapsTakeBAtThePixelNotItsFootprintsAverage) {
   // rim — the check that this test can tell the two apart — and after 16 frames (half the footprint)
   // the bias, which goes as the footprint's square, is a quarter of it (measured: 1.375 → 1.118, a
   // ratio of 0.31; with the footprint kept, it stays).
+  // Every frame at the pixel centres (render.aa=1): the per-pixel gather is the truth at each centre.
   const std::vector<std::string> scene = {"light.direction=0,0.5,-0.87", "ambient=0,0,0", "render.width=80",
-                                          "render.height=60", "sss.light_map_size=1024"};
+                                          "render.height=60", "sss.light_map_size=1024", "render.aa=1"};
   auto with = [&](std::initializer_list<const char*> extra) {
     std::vector<std::string> sets = scene;
     sets.insert(sets.end(), extra.begin(), extra.end());

@@ -273,6 +273,7 @@ TEST(ReferenceIntegrator, CommandWritesImageAndStandardError) {
   EXPECT_EQ(image.height, 4);
   EXPECT_EQ(se.width, 6);
   EXPECT_NE(r.out.find("3 pass(es)"), std::string::npos) << r.out;
+  EXPECT_EQ(gpu::readExrStringAttributes(out).at("tallow.pixel_filter"), "box") << "the command's default";
 }
 
 // --- Emergent light (ReferenceSettings::emergentLight, `--emergent`) -----------------------------
@@ -443,7 +444,8 @@ TEST(ReferenceIntegrator, CommandWritesTheEmergentImage) {
   const std::string out = (dir.path() / "ref.exr").string();
   const std::string preset = std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/emergent_sphere.json";
   const test::CommandResult r = test::runTallow(
-      {"reference", "--preset", preset, "--spp", "2", "--points", "1024", "--emergent=64", "--out", out});
+      {"reference", "--preset", preset, "--spp", "2", "--points", "1024", "--emergent=64", "--pixel-filter", "centre",
+       "--out", out});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const gpu::Image emergent = gpu::readExr(app::emergentPath(out));
   EXPECT_EQ(emergent.width, 12);
@@ -454,7 +456,8 @@ TEST(ReferenceIntegrator, CommandWritesTheEmergentImage) {
   const std::map<std::string, std::string> header = gpu::readExrStringAttributes(app::emergentPath(out));
   EXPECT_EQ(header.at("tallow.emergent"), "on");
   EXPECT_EQ(header.at("tallow.emitter_points"), "64");
-  EXPECT_EQ(header.at("tallow.emergent_pixels"), "44");
+  EXPECT_EQ(header.at("tallow.emergent_pixels"), "44");  // the receivers seen at the pixel centres
+  EXPECT_EQ(gpu::readExrStringAttributes(out).at("tallow.pixel_filter"), "centre");
   EXPECT_EQ(gpu::readExrStringAttributes(out).at("tallow.emergent"), "on");
   EXPECT_EQ(app::emergentPath("/a/REF.exr"), std::filesystem::path("/a/REF_emergent.exr"));
 

@@ -6,6 +6,7 @@
 #include "gpu/gl_objects.h"
 #include "gpu/readback.h"
 #include "gpu/shader_library.h"
+#include "gpu/image_io.h"
 #include "gpu/tonemap.h"
 #include "sss/display_pass.h"
 
@@ -46,7 +47,7 @@ TEST(ToneMapGL, DisplayShaderAgreesWithTheCppToneMapAtFloatPrecision) {
   for (gpu::ToneMap op : {gpu::ToneMap::Clamp, gpu::ToneMap::Reinhard, gpu::ToneMap::Aces, gpu::ToneMap::HuePreserving})
     for (float ev : {0.0f, -1.5f}) {
       const gpu::ToneMapSettings settings{op, ev};
-      display.render(radiance, fb.id(), width, 1, settings);
+      display.render(radiance, fb.id(), width, 1, settings, gpu::Dither::Off);
       const gpu::Image shown = gpu::readColor(fb, 0, width, 1);
       double worst = 0.0;
       for (int x = 0; x < width; ++x) {
@@ -59,6 +60,19 @@ TEST(ToneMapGL, DisplayShaderAgreesWithTheCppToneMapAtFloatPrecision) {
       // the last place between the driver and libm (measured on llvmpipe: at most 2.4e-7, four units
       // at 1); the bound is about eight times that.
       EXPECT_LT(worst, 2e-6) << gpu::toneMapName(op) << " at " << ev << " EV";
+      // Dithered, the window's levels are the PNG writer's (the same hash of the pixel; row 0 is
+      // y = 0 for both in a one-row target): equal but where float rounding puts the two sides of
+      // a level boundary.
+      display.render(radiance, fb.id(), width, 1, settings, gpu::Dither::On);
+      const gpu::Image levels = gpu::readColor(fb, 0, width, 1);
+      gpu::Image one(width, 1);
+      for (int x = 0; x < width; ++x) one.at(x, 0) = colours[static_cast<std::size_t>(x)];
+      const std::vector<std::uint8_t> png = gpu::toneMappedRgb8(one, settings);
+      int differ = 0;
+      for (int x = 0; x < width; ++x)
+        for (int c = 0; c < 3; ++c)
+          differ += std::lround(levels.at(x, 0)[c] * 255.0f) != png[3 * static_cast<std::size_t>(x) + static_cast<std::size_t>(c)];
+      EXPECT_LE(differ, 1) << gpu::toneMapName(op) << " at " << ev << " EV: dithered levels differ from the PNG's";
     }
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }

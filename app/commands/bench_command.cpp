@@ -183,6 +183,7 @@ void computeGroupReference(const BenchOptions& o, ReferenceGroup& g, const sss::
   r.relError = o.refRelError;
   r.points = o.refPoints;
   r.seed = kReferenceSeed;
+  r.pixelFilter = "centre";  // the rows are drawn at the pixel centres (render.aa=1 in their sets)
   r.out = g.file;  // validateReferenceOptions wants a name; nothing is written by computeReference
   if (o.receivers) r.emergent = sss::kDefaultEmitterPoints;
   const sss::ReferenceResult result = computeReference(r, progress, &g.fieldMeshes);
@@ -284,6 +285,7 @@ void runEqualTime(const LoadedScene& truth, const ReferenceGroup& ref, const Ben
   s.maxPasses = kEqualTimeMaxPasses;
   s.pointsPerPass = o.refPoints;
   s.seed = kReferenceSeed + kEqualTimeSeedOffset;
+  s.pixelFilter = sss::PixelFilter::Centre;  // as the reference it is compared with
   s.fieldMeshes = ref.fieldMeshes;
   const double budgetMs = row.firstWallMs;
   const auto start = Clock::now();
@@ -616,6 +618,10 @@ int runBench(const BenchOptions& o) {
       // The CPU reference has no visible flame: the rows are rendered without it (first, so that a
       // --set render.flame=true given on purpose still wins).
       c.scene.sets.insert(c.scene.sets.begin(), "render.flame=false");
+      // Each frame is measured as drawn, at the pixel centres, against a reference at the pixel
+      // centres: anti-aliasing (render.aa) is measured on its own (scripts/results_picture.py), and
+      // the VPL term is the difference of two frames (a still's average would mix them).
+      c.scene.sets.insert(c.scene.sets.begin(), "render.aa=1");
       c.scene.sets.push_back("method=" + method);
       std::vector<std::string> truthKey;
       std::vector<std::pair<std::string, std::string>> truthSettings;

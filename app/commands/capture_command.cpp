@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 
 #include "app/commands/frame_stats.h"
 #include "app/commands/interrupt.h"
@@ -292,7 +293,12 @@ int runCapture(const CaptureOptions& options) {
 
       // The earlier run's outputs go when this one has its first frame to write (docs/commands.md).
       if (i == 0) folder.clearEarlierRun(kCaptureOutputs);
-      gpu::writePng(out / frameName(i, "png"), image, config.render.toneMap);
+      // The PNG and the video show the picture as the window does (render.bloom's glare included);
+      // the EXR keeps the radiance.
+      const std::optional<gpu::Image> shown =
+          config.render.bloom > 0.0f ? std::optional<gpu::Image>(renderer.readShown()) : std::nullopt;
+      const gpu::Image& picture = shown ? *shown : image;
+      gpu::writePng(out / frameName(i, "png"), picture, config.render.toneMap);
       const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
       if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
                         {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}}) != asked)
@@ -302,7 +308,7 @@ int runCapture(const CaptureOptions& options) {
                      double(gpu::kHalfMax));
       if (!options.video.empty()) {
         if (!video) video = std::make_unique<VideoEncoder>(options.video, image.width, image.height, options.fps);
-        video->add(gpu::toneMappedRgb8(image, config.render.toneMap));
+        video->add(gpu::toneMappedRgb8(picture, config.render.toneMap));
       }
       frame.rssBytes = residentBytes();
       previous = std::move(image);

@@ -36,6 +36,7 @@ sss::ReferenceSettings referenceSettings(const ReferenceOptions& options, sss::F
   s.pointsPerPass = options.points;
   s.seed = options.seed;
   s.threads = options.threads;
+  s.pixelFilter = options.pixelFilter == "centre" ? sss::PixelFilter::Centre : sss::PixelFilter::Box;
   s.emergentLight = options.emergent > 0;
   if (s.emergentLight) s.emitterPoints = options.emergent;
   return s;
@@ -186,6 +187,7 @@ int runReference(const ReferenceOptions& options) {
       {"tallow.renderer", "tallow reference (CPU, Embree + TBB)"},
       {"tallow.spp", std::to_string(r.passes)},
       {"tallow.passes", std::to_string(r.passes)},
+      {"tallow.pixel_filter", options.pixelFilter},
       {"tallow.points_per_pass", std::to_string(r.pointsPerPass)},
       {"tallow.near_field_points", number(r.nearFieldPoints)},
       {"tallow.rel_error", number(r.relError)},

@@ -30,6 +30,7 @@ struct ReferenceOptions {
   int points = 0;           ///< --points: surface points per translucent object and pass; 0: automatic
   std::uint64_t seed = 1;   ///< --seed
   int threads = 0;          ///< --threads; 0: all cores
+  std::string pixelFilter = "box";  ///< --pixel-filter: box (the pixel's square) or centre
   /// --emergent[=N]: emitter points per translucent object and pass of the emergent light onto the
   /// receivers (sss::kDefaultEmitterPoints when given without a value); 0: off.
   int emergent = 0;

@@ -222,6 +222,22 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                 0.0),
                     [](auto& c) -> auto& { return c.render.toneMap.exposureEv; }));
 
+  r.add(bind<int>(withDefault(declare("render.aa", "int", "samples",
+                                      "Anti-aliasing of stills: while the picture does not change (paused, capture "
+                                      "--accumulate, a still scene) each frame is drawn at the next of this many "
+                                      "sub-pixel positions (the centre, then Halton points) and the frames are "
+                                      "averaged, edges included; any change restarts at the pixel centres. 1: off.",
+                                      1, 256),
+                              16),
+                  [](auto& c) -> auto& { return c.render.aaSamples; }));
+  r.add(bind<float>(withDefault(declare("render.bloom", "float", "",
+                                        "Glare around bright light (a candle's flame): this share of the picture's "
+                                        "light spread by a point-spread function falling off as 1/r² from 2 to 64 "
+                                        "pixels, before tone mapping, flux kept; in the window, PNGs and videos, not "
+                                        "in the EXR's radiance. 0: off.",
+                                        0, 1),
+                                0.0),
+                    [](auto& c) -> auto& { return c.render.bloom; }));
   r.add(bind<bool>(withDefault(declare("render.specular", "bool", "",
                                        "Fresnel-weighted specular reflection on translucent objects: the environment "
                                        "map in the mirror direction, or the uniform ambient sky without one."),

@@ -62,3 +62,36 @@ TALLOW_FN vec3 toneMapToSrgb(vec3 radiance, float exposureScale, int op) {
   vec3 c = toneMapLinear(radiance, exposureScale, op);
   return vec3(srgbEncode(c.x), srgbEncode(c.y), srgbEncode(c.z));
 }
+
+// 8-bit output with dither (PNG, video, window). Rounding a smooth dark gradient to 8 bits draws
+// rings of constant value one level apart, which the eye sees as bands (the candle's table glow).
+// Adding noise of a triangular distribution on (−1, 1) levels before rounding makes the error of
+// every output level independent of the signal, its mean zero and its variance constant (Lipshitz,
+// Wannamaker and Vanderkooy 1992, "Quantization and dither: a theoretical survey", §5): a local
+// mean of the bytes equals the signal, so no band remains. The noise is a fixed hash of the pixel
+// (no flicker in a still). Within half a level of black or white there is no dither: black stays
+// black and white white (what rounds to 0 or 255 is written so), at most half a level off there.
+TALLOW_FN uint ditherHash(uint v) {
+  // Wellons' "lowbias32" integer hash (2018): every output bit depends on every input bit.
+  v = v ^ (v >> 16u);
+  v = v * 0x7feb352du;
+  v = v ^ (v >> 15u);
+  v = v * 0x846ca68bu;
+  return v ^ (v >> 16u);
+}
+
+/// The dither at pixel (x, y), in output levels: the sum of two uniforms on [0, 1) minus 1.
+TALLOW_FN float ditherLevels(int x, int y) {
+  uint h1 = ditherHash(uint(x) + 0x9e3779b9u * uint(y));
+  uint h2 = ditherHash(h1 ^ 0x85ebca6bu);
+  const float unit = 1.0f / 16777216.0f;  // 2^−24: the top 24 bits as a float in [0, 1)
+  return float(h1 >> 8u) * unit + float(h2 >> 8u) * unit - 1.0f;
+}
+
+/// An encoded value in [0, 1] → its 8-bit level (0…255), dithered by `dither` levels.
+TALLOW_FN float quantize8(float encoded, float dither) {
+  float level = encoded * 255.0f;
+  if (!(level >= 0.5f)) return 0.0f;  // NaN too
+  if (level >= 254.5f) return 255.0f;
+  return clamp(floor(level + 0.5f + dither), 0.0f, 255.0f);
+}

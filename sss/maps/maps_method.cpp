@@ -1,5 +1,7 @@
 #include "sss/maps/maps_method.h"
 
+#include <algorithm>
+
 #include "sss/maps/map_count.h"
 #include "sss/maps/radiosity_maps.h"
 #include "sss/maps/virtual_point_lights.h"
@@ -161,6 +163,11 @@ void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& conte
   const bool vpls = active && VirtualPointLights::applies(context.scene(), context.settings());
   VirtualPointLights::setReceiverUniforms(p, vpls ? context.modules.find<VirtualPointLights>() : nullptr,
                                           vplShadowUnit);
+}
+
+double RadiosityMapsMethod::stillWeight(const FrameContext& context) const {
+  const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
+  return maps ? std::max(1.0, static_cast<double>(maps->frames())) : 1.0;
 }
 
 std::vector<Pass*> NoCacheMethod::passes(const FrameState& state) {

@@ -69,6 +69,8 @@ class RadiosityMapsMethod final : public TranslucencyMethod {
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 3; }  ///< the maps, their depth, the VPLs' shadow cubes
   void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
+  /// The maps' accumulated frames: the frame after k frames of map samples weighs k.
+  double stillWeight(const FrameContext& context) const override;
 
  private:
   std::shared_ptr<LightGBufferPass> gbuffer_;

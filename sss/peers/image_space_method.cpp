@@ -1,5 +1,7 @@
 #include "sss/peers/image_space_method.h"
 
+#include <algorithm>
+
 #include "sss/peers/image_space.h"
 #include "sss/shadow_pass.h"
 
@@ -90,6 +92,11 @@ void ImageSpaceMethod::bindSurface(gpu::Program& p, const FrameContext& context,
   const ImageSpaceSss* is = context.modules.find<ImageSpaceSss>();
   const bool shades = active && shading(context.state) == SurfaceShading::ImageSpace;
   ImageSpaceSss::setSurfaceUniforms(p, shades ? is : nullptr, context.settings(), firstUnit);
+}
+
+double ImageSpaceMethod::stillWeight(const FrameContext& context) const {
+  const ImageSpaceSss* is = context.modules.find<ImageSpaceSss>();
+  return is ? std::max(1.0, static_cast<double>(is->frames())) : 1.0;
 }
 
 }  // namespace tallow::sss

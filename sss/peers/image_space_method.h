@@ -54,6 +54,8 @@ class ImageSpaceMethod final : public TranslucencyMethod {
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 2; }  ///< the accumulated estimate and coverage
   void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
+  /// The frames its estimate has accumulated (image_space.frames at most).
+  double stillWeight(const FrameContext& context) const override;
 
  private:
   ImageSpaceGBufferPass gbuffer_;

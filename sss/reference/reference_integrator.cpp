@@ -20,6 +20,7 @@
 #include "sss/bssrdf/bssrdf.h"
 #include "sss/field_source.h"
 #include "sss/flame_pass.h"
+#include "sss/pixel_jitter.h"
 #include "sss/reference/parallel_for.h"
 #include "sss/scene_geometry.h"
 #include "sss/translucent_slots.h"
@@ -514,53 +515,63 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     const glm::dvec3 albedo(o.albedo);
     return albedo / kPi * e + albedo * glm::dvec3(scene.ambient);
   };
-  parallelFor(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y)
-      for (int x = 0; x < W; ++x) {
-        PixelHit& px = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x)];
-        const double ndcX = 2.0 * (x + 0.5) / W - 1.0, ndcY = 1.0 - 2.0 * (y + 0.5) / H;  // row 0 at the top
-        const glm::dvec3 nearP = unproject(ndcX, ndcY, -1.0), farP = unproject(ndcX, ndcY, 1.0);
-        const glm::dvec3 dir = glm::normalize(farP - nearP);
-        const glm::dvec3 origin = camera.orthographic ? nearP : glm::dvec3(camera.position);
-        px.base = glm::dvec3(scene.background);
-        const auto hit = rays.intersect(origin, dir, 0.0, std::numeric_limits<double>::infinity());
-        if (!hit) continue;
-        const WorldMesh& m = meshes[hit->geom];
-        const auto& tri = m.triangles[hit->prim];
-        const double w0 = 1.0 - hit->u - hit->v;
-        const glm::dvec3 xw = w0 * m.positions[tri[0]] + hit->u * m.positions[tri[1]] + hit->v * m.positions[tri[2]];
-        glm::dvec3 n = w0 * m.normals[tri[0]] + hit->u * m.normals[tri[1]] + hit->v * m.normals[tri[2]];
-        n = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
-        const glm::dvec3 rawNormal = n;  // as drawn: which slot a point is (surface.frag's surfaceSlot)
-        const glm::dvec3 toCamera = -dir;
-        if (glm::dot(n, toCamera) < 0.0) n = -n;  // open meshes show their inside, as surface.frag does
-        const SceneObject& o = scene.objects[static_cast<std::size_t>(m.objectIndex)];
-        const int slot = slotOfMesh[hit->geom];
-        if (slot < 0) {
-          px.base = shadeOpaque(o, xw, n);
-          px.receiver = true;
-          px.xr = xw;
-          px.nr = n;
-          px.albedo = glm::dvec3(o.albedo);
-          continue;
-        }
-        const double cosO = std::clamp(glm::dot(n, toCamera), 0.0, 1.0);
-        const TranslucentObject& t = objects[static_cast<std::size_t>(slot)];
-        px.slot = slot;
-        px.material = &t.at(xw, rawNormal);
-        px.xoMm = xw * kMmPerM;
-        px.no = n;
-        px.transmit = fresnelTransmittance(cosO, px.material->eta) / kPi;
-        px.base = glm::dvec3(0.0);
-        if (render.specular) {
-          const glm::dvec3 mirror = glm::reflect(dir, n);
-          glm::dvec3 mirrored = environment ? environment->radiance(mirror) : glm::dvec3(scene.ambient);
-          for (const FlameSheet& f : flames)  // surface.frag's flame reflection
-            mirrored += double(f.radianceScale) * flameSeenAlong(xw, mirror, f);
-          px.base = fresnelReflectance(cosO, px.material->eta) * mirrored;
-        }
-      }
-  });
+  // What the ray through (x + ½ + jitter.x, y + ½ + jitter.y) sees (jitter in pixels, +y down).
+  const auto trace = [&](int x, int y, glm::dvec2 jitter, PixelHit& px) {
+    px = PixelHit{};
+    const double ndcX = 2.0 * (x + 0.5 + jitter.x) / W - 1.0;
+    const double ndcY = 1.0 - 2.0 * (y + 0.5 + jitter.y) / H;  // row 0 at the top
+    const glm::dvec3 nearP = unproject(ndcX, ndcY, -1.0), farP = unproject(ndcX, ndcY, 1.0);
+    const glm::dvec3 dir = glm::normalize(farP - nearP);
+    const glm::dvec3 origin = camera.orthographic ? nearP : glm::dvec3(camera.position);
+    px.base = glm::dvec3(scene.background);
+    const auto hit = rays.intersect(origin, dir, 0.0, std::numeric_limits<double>::infinity());
+    if (!hit) return;
+    const WorldMesh& m = meshes[hit->geom];
+    const auto& tri = m.triangles[hit->prim];
+    const double w0 = 1.0 - hit->u - hit->v;
+    const glm::dvec3 xw = w0 * m.positions[tri[0]] + hit->u * m.positions[tri[1]] + hit->v * m.positions[tri[2]];
+    glm::dvec3 n = w0 * m.normals[tri[0]] + hit->u * m.normals[tri[1]] + hit->v * m.normals[tri[2]];
+    n = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
+    const glm::dvec3 rawNormal = n;  // as drawn: which slot a point is (surface.frag's surfaceSlot)
+    const glm::dvec3 toCamera = -dir;
+    if (glm::dot(n, toCamera) < 0.0) n = -n;  // open meshes show their inside, as surface.frag does
+    const SceneObject& o = scene.objects[static_cast<std::size_t>(m.objectIndex)];
+    const int slot = slotOfMesh[hit->geom];
+    if (slot < 0) {
+      px.base = shadeOpaque(o, xw, n);
+      px.receiver = true;
+      px.xr = xw;
+      px.nr = n;
+      px.albedo = glm::dvec3(o.albedo);
+      return;
+    }
+    const double cosO = std::clamp(glm::dot(n, toCamera), 0.0, 1.0);
+    const TranslucentObject& t = objects[static_cast<std::size_t>(slot)];
+    px.slot = slot;
+    px.material = &t.at(xw, rawNormal);
+    px.xoMm = xw * kMmPerM;
+    px.no = n;
+    px.transmit = fresnelTransmittance(cosO, px.material->eta) / kPi;
+    px.base = glm::dvec3(0.0);
+    if (render.specular) {
+      const glm::dvec3 mirror = glm::reflect(dir, n);
+      glm::dvec3 mirrored = environment ? environment->radiance(mirror) : glm::dvec3(scene.ambient);
+      for (const FlameSheet& f : flames)  // surface.frag's flame reflection
+        mirrored += double(f.radianceScale) * flameSeenAlong(xw, mirror, f);
+      px.base = fresnelReflectance(cosO, px.material->eta) * mirrored;
+    }
+  };
+  const auto traceAll = [&](glm::dvec2 jitter, std::vector<PixelHit>& out) {
+    parallelFor(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+      for (int y = rows.begin(); y != rows.end(); ++y)
+        for (int x = 0; x < W; ++x)
+          trace(x, y, jitter, out[static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x)]);
+    });
+  };
+  // The pixel centres decide which pixels are translucent (the standard error's mask, the stopping
+  // statistic); with the box filter each pass then traces its own sub-pixel position.
+  traceAll(glm::dvec2(0.0), pixels);
+  const std::vector<PixelHit> centres = pixels;
 
   ReferenceResult result;
   for (const TranslucentObject& t : objects) {
@@ -570,7 +581,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
   }
   if (objects.empty()) result.pointsPerPass = settings.pointsPerPass;
   result.triangles = rays.triangles();
-  for (const PixelHit& p : pixels) result.translucentPixels += p.slot >= 0 ? 1 : 0;
+  for (const PixelHit& p : centres) result.translucentPixels += p.slot >= 0 ? 1 : 0;
   const std::size_t count = pixels.size();
   std::vector<glm::dvec3> mean(count, glm::dvec3(0.0)), m2(count, glm::dvec3(0.0));
   const int passCap = settings.maxPasses > 0 ? settings.maxPasses : settings.passLimit;
@@ -646,7 +657,11 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       }
 
     // 2. Every translucent pixel gathers the object's lit points (Eq. 7 by area sampling), Russian
-    //    roulette on exp(−σ_tr r), and the pass estimate joins the running mean and variance.
+    //    roulette on exp(−σ_tr r), and the pass estimate joins the running mean and variance. With
+    //    the box filter, pass k looks through sub-pixel position k of sss/pixel_jitter.h (pass 0 the
+    //    centre), the positions the GPU's still average (render.aa) cycles through.
+    if (settings.pixelFilter == PixelFilter::Box && passes > 0)
+      traceAll(pixelJitter(static_cast<unsigned>(passes)), pixels);
     const double n1 = static_cast<double>(passes + 1);
     parallelFor(tbb::blocked_range2d<int>(0, H, 8, 0, W, 8), [&](const tbb::blocked_range2d<int>& tile) {
       for (int y = tile.rows().begin(); y != tile.rows().end(); ++y)
@@ -674,7 +689,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     // 3. The stopping statistic.
     double se2 = 0.0, l2 = 0.0;
     for (std::size_t i = 0; i < count; ++i) {
-      if (pixels[i].slot < 0) continue;
+      if (centres[i].slot < 0) continue;
       if (passes >= 2) se2 += (m2[i].x + m2[i].y + m2[i].z) / ((passes - 1.0) * passes);
       l2 += glm::dot(mean[i], mean[i]);
     }
@@ -695,7 +710,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
       result.radiance.at(x, y) = glm::vec4(glm::vec3(mean[i]), 1.0f);
       const glm::dvec3 se = passes >= 2 ? glm::sqrt(m2[i] / ((passes - 1.0) * passes)) : glm::dvec3(0.0);
-      result.standardError.at(x, y) = glm::vec4(glm::vec3(se), pixels[i].slot >= 0 ? 1.0f : 0.0f);
+      result.standardError.at(x, y) = glm::vec4(glm::vec3(se), centres[i].slot >= 0 ? 1.0f : 0.0f);
     }
   if (settings.emergentLight) {
     result.emitterPoints = settings.emitterPoints;
@@ -705,7 +720,7 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       for (int x = 0; x < W; ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
         const glm::dvec3 e = emergent ? emergentMean[i] : glm::dvec3(0.0);
-        result.emergent.at(x, y) = glm::vec4(glm::vec3(e), pixels[i].receiver ? 1.0f : 0.0f);
+        result.emergent.at(x, y) = glm::vec4(glm::vec3(e), centres[i].receiver ? 1.0f : 0.0f);
         if (!(std::max({e.x, e.y, e.z}) > 0.0)) continue;
         ++result.emergentPixels;
         if (passes >= 2) se2 += (m2[i].x + m2[i].y + m2[i].z) / ((passes - 1.0) * passes);

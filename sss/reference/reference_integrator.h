@@ -31,6 +31,11 @@ inline constexpr int kDefaultMinPasses = 8;
 /// Field objects' triangles by object index, in the field's own units (before its transform).
 using FieldMeshes = std::map<int, geometry::TriangleMesh>;
 
+/// What a pixel's value is the mean of: the scene along the ray through its centre, or over its
+/// square (a box filter: pass k traces sub-pixel position k of sss/pixel_jitter.h, as the GPU's
+/// still average, render.aa, draws frame k of a still).
+enum class PixelFilter { Centre, Box };
+
 struct ReferenceSettings {
   double timeS = 0.0;           ///< animation time: field objects meshed and flame lights placed at t
   int maxPasses = 0;            ///< stop after this many passes (0: no pass limit)
@@ -40,6 +45,9 @@ struct ReferenceSettings {
   int pointsPerPass = 0;
   std::uint64_t seed = 1;       ///< the random stream; results do not depend on the thread count
   int threads = 0;              ///< 0: TBB's default
+  /// Centre: the integrator's estimate at the pixel centres (its tests compare points with analytic
+  /// values); `tallow reference` and the bench take Box, to compare with anti-aliased stills.
+  PixelFilter pixelFilter = PixelFilter::Centre;
   int minPasses = kDefaultMinPasses;  ///< with relError: passes before the error estimate is trusted (≥ 2)
   int passLimit = 1 << 16;      ///< with relError only: give up after this many passes
   /// Light leaving the translucent objects onto the opaque receivers (one bounce, Lambertian
