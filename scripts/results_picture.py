@@ -142,11 +142,11 @@ def section(work):
     lines.append("**Dither** of 8-bit output: a uniform image between two levels is written with the mean level "
                  "%s for %s (undithered rounding: %d)." % (fmt(dither[0][1], 4), fmt(dither[0][0], 2), round(dither[0][0])))
     lines.append("")
-    lines.append("![the default candle without and with render.aa and render.bloom](images/results/%s)" % FIGURE)
+    lines.append("![the default candle without and with render.aa](images/results/%s)" % FIGURE)
     lines.append("")
-    lines.append("In false colour, what the still's average and the glare change: the silhouettes and the rim "
-                 "(anti-aliasing), the flame's surroundings (glare), and the maps' noise, which the weighted "
-                 "average of 16 frames lowers.")
+    lines.append("Compared on the EXRs (the radiance, which holds no glare), in false colour: what the still's "
+                 "average changes: the silhouettes, the rim and the table's far edge (anti-aliasing) and the maps' "
+                 "noise, which differs from run to run and which the weighted average of 16 frames lowers.")
     lines.append("")
     lines.append(results_sections.rerun("results_picture.py"))
     lines.append("")
