@@ -5,13 +5,24 @@
 
 namespace tallow::sss {
 
+namespace {
+/// Levels of the full mip chain of a width × height picture.
+int pyramidLevels(int width, int height) {
+  return static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(width, height))));
+}
+}  // namespace
+
 Bloom::Bloom(const gpu::ShaderLibrary& shaders) : program_(shaders, {{{GL_COMPUTE_SHADER, "camera/bloom.comp"}}}) {}
+
+std::size_t Bloom::bytesFor(int width, int height) {
+  return gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, pyramidLevels(width, height)) +
+         gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, 1);
+}
 
 void Bloom::apply(const gpu::Texture& radiance, float share, float exposureScale) {
   const int w = radiance.width(), h = radiance.height();
   if (!output_.id() || output_.width() != w || output_.height() != h) {
-    const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(w, h))));
-    pyramid_ = gpu::Texture::create2D(GL_RGBA32F, w, h, levels);
+    pyramid_ = gpu::Texture::create2D(GL_RGBA32F, w, h, pyramidLevels(w, h));
     pyramid_.setFilter(GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR);
     glTextureParameteri(pyramid_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(pyramid_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
@@ -35,8 +46,7 @@ void Bloom::apply(const gpu::Texture& radiance, float share, float exposureScale
   glDispatchCompute(groupsX, groupsY, 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   glGenerateTextureMipmap(pyramid_.id());  // each level keeps the bright part's mean
-  // Step 1: the picture with a share of its bright light spread by the PSF.
-  program_.use();
+  // Step 1: the picture with a share of its bright light spread by the PSF (the program is still bound).
   program_.set("uStep", 1);
   pyramid_.bind(1);
   glBindImageTexture(0, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);

@@ -20,6 +20,8 @@ class Bloom {
   static constexpr int kLevels = 6;
 
   explicit Bloom(const gpu::ShaderLibrary& shaders);
+  /// GPU memory apply() allocates for a width × height picture (the mip chain and the output).
+  static std::size_t bytesFor(int width, int height);
   /// The picture `radiance` with a share `share` ∈ (0, 1] of its light above white (at the exposure
   /// scale `exposureScale`) spread by the PSF, into output() (allocated on the first call and at a
   /// new size).

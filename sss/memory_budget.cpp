@@ -9,6 +9,7 @@
 #include "geometry/gpu_dual_contouring.h"
 #include "gpu/gl_objects.h"
 #include "gpu/gpu_memory.h"
+#include "sss/bloom.h"
 #include "sss/field_objects.h"
 #include "sss/maps/radiosity_maps.h"
 #include "sss/maps/virtual_point_lights.h"
@@ -195,12 +196,8 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
   add("render targets", "render.width × render.height=" + std::to_string(settings.width) + "x" +
                             std::to_string(settings.height),
       renderTargetBytes(settings.width, settings.height));
-  if (settings.bloom > 0.0f) {  // sss/bloom.h: the bright part's mip chain and the picture shown
-    const int levels = static_cast<int>(std::bit_width(static_cast<unsigned>(std::max(settings.width, settings.height))));
-    add("bloom", "render.bloom>0",
-        Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, settings.width, settings.height, 1, levels) +
-            screen(GL_RGBA32F, settings.width, settings.height));
-  }
+  if (settings.bloom > 0.0f)  // the bright part's mip chain and the picture shown
+    add("bloom", "render.bloom>0", Bloom::bytesFor(settings.width, settings.height));
   if (settings.aaSamples > 1)  // sss/still_average.h: the still's mean, RGBA32F
     add("still average", "render.aa=" + std::to_string(settings.aaSamples), screen(GL_RGBA32F, settings.width, settings.height));
   return m;
