@@ -64,10 +64,12 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     }
     float z = t.z - uEpsBias * mapViews[k].depthScale.x;
     vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
-    float v = 0.25 * (texture(uMapDepth, vec4(t.xy + vec2(-texel.x, -texel.y), float(k), z)) +
-                      texture(uMapDepth, vec4(t.xy + vec2(texel.x, -texel.y), float(k), z)) +
-                      texture(uMapDepth, vec4(t.xy + vec2(-texel.x, texel.y), float(k), z)) +
-                      texture(uMapDepth, vec4(t.xy + vec2(texel.x, texel.y), float(k), z)));
+    vec2 taps[4] = vec2[4](t.xy + vec2(-texel.x, -texel.y), t.xy + vec2(texel.x, -texel.y),
+                           t.xy + vec2(-texel.x, texel.y), t.xy + vec2(texel.x, texel.y));
+    float seen[4];
+    for (int i = 0; i < 4; ++i) seen[i] = texture(uMapDepth, vec4(taps[i], float(k), z));
+    float v = 0.25 * (seen[0] + seen[1] + seen[2] + seen[3]);
+    bool edge = v < 1.0;  // some taps fall on a surface nearer the map than x_o
     // A map that sees x_o at θ from its normal spreads a texel over 1/cos θ of surface (and its
     // mipmaps blur further): weighting by cos^p θ lets the maps that see x_o face-on decide, while
     // the normalisation by n keeps every point that any map sees.
@@ -79,7 +81,16 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
       dx *= narrow;
       dy *= narrow;
     }
-    vec4 m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
+    // Where x_o lies at the edge of what map k sees (a puddle beside the candle's foot, seen from
+    // above past the candle's top), a filtered look-up would mix in the texels of the surface in
+    // front, whose B can be many times x_o's: bright and dark single pixels along the edge (issue
+    // 36: 5 dark dots on the default candle's puddle, 2 without the mix). There B is taken from the
+    // level-0 texels of the taps that see x_o only.
+    vec4 m = vec4(0.0);
+    if (edge)
+      for (int i = 0; i < 4; ++i) m += seen[i] * textureLod(uMaps, vec3(taps[i], float(k)), 0.0);
+    else
+      m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
     if (m.a <= 0.0) continue;
     if (firstMap < 0) firstMap = k;
     if (cosTheta >= COVERAGE_MIN_COS && ++facing == 2) secondFacingMap = k;
