@@ -47,6 +47,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("render.exposure_ev", [](S s) { return s.toneMap.exposureEv; }));
     t.push_back(setting("render.aa", [](S s) { return s.aaSamples; }));
     t.push_back(setting("render.bloom", [](S s) { return s.bloom; }));
+    t.push_back(setting("render.local_exposure", [](S s) { return s.localExposure; }));
     t.push_back(setting("render.specular", [](S s) { return s.specular; }));
     t.push_back(setting("render.flame", [](S s) { return s.flame; }));
     t.push_back(setting("flame.exposure_ev", [](S s) { return s.flameExposureEv; }));

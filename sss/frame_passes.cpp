@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "sss/bloom.h"
+#include "sss/local_exposure.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/shadow_pass.h"
@@ -180,7 +181,32 @@ PassIo BloomPass::io(const FrameState&) const {
 
 void BloomPass::run(FrameContext& context, bool /*changed*/) {
   const RenderSettings& s = context.settings();
-  context.modules.obtain<Bloom>(context.shaders).apply(context.target.radiance, s.bloom, std::exp2(s.toneMap.exposureEv));
+  Bloom& bloom = context.modules.obtain<Bloom>(context.shaders);
+  bloom.apply(*context.shown, s.bloom, std::exp2(s.toneMap.exposureEv));
+  context.shown = &bloom.output();
+}
+
+// --- local adaptation ------------------------------------------------------------------------------
+
+std::string LocalExposurePass::reason(const FrameState& state) const {
+  char share[32];
+  std::snprintf(share, sizeof share, "%g", double(state.settings.localExposure));
+  return std::string("render.local_exposure = ") + share +
+         ": the picture shown with each region's edge-aware mean log luminance (a bilateral grid) that share "
+         "nearer mid grey where it is darker; the radiance (EXR) unchanged";
+}
+
+PassIo LocalExposurePass::io(const FrameState&) const {
+  // Like the glare, it reads render.exposure_ev (mid grey is where the exposure puts it) and runs
+  // after every camera pass (runsAgain), so it always sees its frame's exposure.
+  return {{resource::kCamera, "render.local_exposure"}, {}, {}};
+}
+
+void LocalExposurePass::run(FrameContext& context, bool /*changed*/) {
+  const RenderSettings& s = context.settings();
+  LocalExposure& local = context.modules.obtain<LocalExposure>(context.shaders);
+  local.apply(*context.shown, s.localExposure, std::exp2(s.toneMap.exposureEv));
+  context.shown = &local.output();
 }
 
 // --- the still's average ----------------------------------------------------------------------------

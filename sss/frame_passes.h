@@ -104,4 +104,17 @@ class BloomPass final : public FramePass {
   void run(FrameContext& context, bool changed) override;
 };
 
+/// camera.local_exposure (render.local_exposure > 0): the picture shown (after the glare) with its
+/// shadows' base layer lifted toward mid grey (sss/local_exposure.h); the radiance stays.
+class LocalExposurePass final : public FramePass {
+ public:
+  std::string name() const override { return "camera.local_exposure"; }
+  bool needed(const FrameState& state) const override { return state.settings.localExposure > 0.0f; }
+  std::string reason(const FrameState& state) const override;
+  PassIo io(const FrameState& state) const override;
+  bool runsAgain(const FrameState&) const override { return true; }  // after every camera pass
+  bool afterPicture() const override { return true; }
+  void run(FrameContext& context, bool changed) override;
+};
+
 }  // namespace tallow::sss

@@ -41,7 +41,8 @@ std::vector<Pass*> FramePlan::passes(const FrameState& state) {
   out.push_back(&camera_);
   if (flame_.needed(state)) out.push_back(&flame_);
   if (still_.needed(state)) out.push_back(&still_);  // it averages the finished picture
-  if (bloom_.needed(state)) out.push_back(&bloom_);  // last: the glare of the picture shown
+  if (bloom_.needed(state)) out.push_back(&bloom_);  // the glare of the picture shown
+  if (localExposure_.needed(state)) out.push_back(&localExposure_);  // last: the eye's adaptation
   return out;
 }
 

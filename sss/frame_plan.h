@@ -51,6 +51,7 @@ class FramePlan {
   FlamePass flame_;
   StillAveragePass still_;
   BloomPass bloom_;
+  LocalExposurePass localExposure_;
 };
 
 }  // namespace tallow::sss

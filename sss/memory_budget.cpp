@@ -10,6 +10,7 @@
 #include "gpu/gl_objects.h"
 #include "gpu/gpu_memory.h"
 #include "sss/bloom.h"
+#include "sss/local_exposure.h"
 #include "sss/field_objects.h"
 #include "sss/maps/radiosity_maps.h"
 #include "sss/maps/virtual_point_lights.h"
@@ -198,6 +199,8 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
       renderTargetBytes(settings.width, settings.height));
   if (settings.bloom > 0.0f)  // the bright part's mip chain and the picture shown
     add("bloom", "render.bloom>0", Bloom::bytesFor(settings.width, settings.height));
+  if (settings.localExposure > 0.0f)  // the bilateral grids and the picture shown
+    add("local exposure", "render.local_exposure>0", LocalExposure::bytesFor(settings.width, settings.height));
   if (settings.aaSamples > 1)  // sss/still_average.h: the still's mean, RGBA32F
     add("still average", "render.aa=" + std::to_string(settings.aaSamples), screen(GL_RGBA32F, settings.width, settings.height));
   return m;

@@ -116,6 +116,9 @@ struct FrameContext {
   /// the camera's sub-pixel offset for it, in pixels (sss/pixel_jitter.h; (0, 0) at stillFrame 0).
   int stillFrame = 0;
   glm::vec2 cameraJitter{0.0f};
+  /// The picture shown as the frame's passes leave it: the camera target's radiance, then each
+  /// afterPicture pass's output (the glare, the local exposure) in turn.
+  const gpu::Texture* shown = &target.radiance;
   const Scene& scene() const { return state.scene; }
   const RenderSettings& settings() const { return state.settings; }
   /// The scene camera for the target's aspect ratio, fitted to the geometry's bounds, moved by

@@ -142,6 +142,9 @@ struct RenderSettings {
   /// render.bloom: the share of the picture's light the glare PSF spreads in the picture shown
   /// (sss/bloom.h); 0: off.
   float bloom = 0.0f;
+  /// render.local_exposure: the share of each region's distance below mid grey (in stops of its
+  /// edge-aware mean) that the picture shown lifts (sss/local_exposure.h); 0: off.
+  float localExposure = 0.0f;
   SssSettings sss;
   VplSettings vpl;
   ImageSpaceSettings imageSpace;

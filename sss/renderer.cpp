@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "gpu/readback.h"
-#include "sss/bloom.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/maps/radiosity_maps.h"
@@ -214,7 +213,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
     for (const std::string& w : io.writes) before[w] = resources_[w];
   }
   forget_ = false;
-  bloomed_ = settings.bloom > 0.0f;
+  shown_ = context.shown;
   if (context.countMapCoverage) coverageProbe_.end();
   // No wait here: this frame's GPU times are read later (resolveTimings, latestTimings).
   pending_.push_back(t);
@@ -249,10 +248,7 @@ void Renderer::restartAccumulation() { ++accumulation_; }
 
 void Renderer::invalidate() { forget_ = true; }
 
-const gpu::Texture& Renderer::shown() const {
-  const Bloom* bloom = modules_.find<Bloom>();
-  return bloomed_ && bloom ? bloom->output() : target_.radiance;
-}
+const gpu::Texture& Renderer::shown() const { return shown_ ? *shown_ : target_.radiance; }
 
 void Renderer::display(GLuint target, int width, int height, const gpu::ToneMapSettings& toneMap) {
   display_.render(shown(), target, width, height, toneMap);

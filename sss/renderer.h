@@ -85,8 +85,12 @@ class Renderer {
 
   gpu::Image readRadiance() const;  ///< the last frame, linear, top row first
   /// The picture shown of the last frame (what display() tone-maps, PNGs and videos are made of):
-  /// the radiance with render.bloom's glare when it is on, the radiance itself otherwise.
+  /// the radiance with render.bloom's glare and render.local_exposure's adaptation where they are
+  /// on, the radiance itself otherwise.
   gpu::Image readShown() const;
+  /// Whether the picture shown is the radiance itself (no pass after the camera's changes it), so
+  /// that a caller holding readRadiance()'s image need not read the frame twice.
+  bool showsRadiance() const { return &shown() == &target_.radiance; }
   /// Coverage of the last frame by the radiosity maps (reads the frame back: for stats and tests).
   MapCoverage mapCoverage() const;
   /// Per pixel of the last frame (top row first): 1 where the camera sees an opaque surface (a
@@ -158,8 +162,10 @@ class Renderer {
   mutable FramePlan plan_;  ///< mutable: listing the plan points the camera pass at the frame's method
   std::unordered_map<const Pass*, PassRecord> records_;
   std::map<std::string, Stamp> resources_;
-  bool bloomed_ = false;  ///< the last frame ran camera.bloom: the picture shown is the Bloom module's
-  /// The texture display() tone-maps: the glare's output after camera.bloom, the radiance otherwise.
+  /// The last frame's picture shown (FrameContext::shown): the radiance, or the output of its last
+  /// afterPicture pass (the glare, the local exposure); null before the first frame.
+  const gpu::Texture* shown_ = nullptr;
+  /// The texture display() tone-maps: shown_, or the radiance before the first frame.
   const gpu::Texture& shown() const;
   int stillFrame_ = 0;    ///< render.aa: frames since the still began (FrameContext::stillFrame)
   int accumulation_ = 0;  ///< restartAccumulation() calls: the input "accumulation"

@@ -27,7 +27,8 @@ double luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.07
 TEST(Flame, IsDrawnOverThePictureAndOutshinesTheWax) {
   test::PresetSession session("candle", {"render.width=96", "render.height=54", "field.res=48", "sss.maps=4",
                                          "sss.samples=2", "sss.frames=1", "sss.map_size=64", "sss.light_map_size=64",
-                                         "vpl.count=0", "flame.exposure_ev=0", "render.aa=1", "render.bloom=0"});
+                                         "vpl.count=0", "flame.exposure_ev=0", "render.aa=1", "render.bloom=0",
+                                         "render.local_exposure=0"});
   const double t = 12.0;
   session.render(t);
   const gpu::Image with = session.render(t);  // converged maps

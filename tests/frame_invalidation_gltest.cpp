@@ -133,9 +133,10 @@ std::vector<sss::Pass*> everyPass(sss::FramePlan& plan, app::LoadedScene& loaded
   for (const char* m : {"radiosity-maps", "no-cache", "sslpv", "image-space", "albedo"}) {
     app::Config config = loaded.config;
     app::parameterRegistry(loaded.materials).set(config, "method", m);
-    // The still's average and the glare are planned only when on.
+    // The still's average, the glare and the local exposure are planned only when on.
     config.render.aaSamples = 4;
     config.render.bloom = 0.5f;
+    config.render.localExposure = 0.5f;
     const sss::FrameState state{config.scene, config.render, 0.0, 0};
     for (sss::Pass* p : plan.passes(state))
       if (std::find(passes.begin(), passes.end(), p) == passes.end()) passes.push_back(p);
@@ -199,10 +200,10 @@ std::set<std::string> expectedReruns(const app::Config& before, const app::Confi
   std::set<std::string> rerun, rewritten;
   for (sss::Pass* p : planAfter.passes(now)) {
     const sss::PassIo io = p->io(now);
-    // The camera pass draws every frame, and the still's average and the glare follow it; everything
-    // else here is converged (one frame each).
+    // The camera pass draws every frame, and the still's average, the glare and the local exposure
+    // follow it; everything else here is converged (one frame each).
     bool runs = !previously.count(p->name()) || p->name() == "surface" || p->name() == "camera.still" ||
-                p->name() == "camera.bloom";
+                p->name() == "camera.bloom" || p->name() == "camera.local_exposure";
     for (const std::string& r : io.reads) runs |= changed.count(r) > 0 || rewritten.count(r) > 0;
     for (const std::string& r : io.paces) runs |= changed.count(r) > 0;
     if (!runs) continue;

@@ -293,10 +293,10 @@ int runCapture(const CaptureOptions& options) {
 
       // The earlier run's outputs go when this one has its first frame to write (docs/commands.md).
       if (i == 0) folder.clearEarlierRun(kCaptureOutputs);
-      // The PNG and the video show the picture as the window does (render.bloom's glare included);
-      // the EXR keeps the radiance.
+      // The PNG and the video show the picture as the window does (render.bloom's glare and
+      // render.local_exposure's adaptation included); the EXR keeps the radiance.
       const std::optional<gpu::Image> shown =
-          config.render.bloom > 0.0f ? std::optional<gpu::Image>(renderer.readShown()) : std::nullopt;
+          renderer.showsRadiance() ? std::nullopt : std::optional<gpu::Image>(renderer.readShown());
       const gpu::Image& picture = shown ? *shown : image;
       gpu::writePng(out / frameName(i, "png"), picture, config.render.toneMap);
       const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;

@@ -238,6 +238,15 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                         0, 1),
                                 0.0),
                     [](auto& c) -> auto& { return c.render.bloom; }));
+  r.add(bind<float>(withDefault(declare("render.local_exposure", "float", "",
+                                        "Local adaptation, as the eye sees a dim table beside a bright flame: each "
+                                        "region of the picture (its edge-aware mean log luminance, a bilateral "
+                                        "grid) darker than mid grey is brought this share of its distance nearer "
+                                        "to it; brighter regions and the detail within a region unchanged; in the "
+                                        "window, PNGs and videos, not in the EXR's radiance. 0: off.",
+                                        0, 1),
+                                0.0),
+                    [](auto& c) -> auto& { return c.render.localExposure; }));
   r.add(bind<bool>(withDefault(declare("render.specular", "bool", "",
                                        "Fresnel-weighted specular reflection on translucent objects: the environment "
                                        "map in the mirror direction, or the uniform ambient sky without one."),
