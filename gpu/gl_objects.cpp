@@ -322,4 +322,10 @@ bool Fence::signaled() const {
   return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
 }
 
+void unbindComputeState(int images, int textures) {
+  for (int u = 0; u < images; ++u) glBindImageTexture(static_cast<GLuint>(u), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+  for (int u = 0; u < textures; ++u) glBindTextureUnit(static_cast<GLuint>(u), 0);
+  glUseProgram(0);
+}
+
 }  // namespace tallow::gpu

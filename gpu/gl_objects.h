@@ -190,4 +190,8 @@ class Fence {
   GLsync sync_ = nullptr;
 };
 
+/// The end of a compute step: image units 0 … images − 1 and texture units 0 … textures − 1 left
+/// unbound and no program in use, so that no binding leaks into the next pass.
+void unbindComputeState(int images, int textures);
+
 }  // namespace tallow::gpu

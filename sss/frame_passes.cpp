@@ -162,14 +162,33 @@ void CameraPass::run(FrameContext& context, bool /*changed*/) {
   context.modules.find<SurfacePass>()->render(context);
 }
 
-// --- the glare ------------------------------------------------------------------------------------
+// --- the picture shown: glare, then local adaptation ------------------------------------------------
+
+namespace {
+
+/// "key = share: what" for the reason of a pass whose parameter is a share.
+std::string shareReason(const char* key, float share, const char* what) {
+  char value[32];
+  std::snprintf(value, sizeof value, "%g", double(share));
+  return std::string(key) + " = " + value + ": " + what;
+}
+
+/// The picture shown through `Effect` (Bloom, LocalExposure: apply(picture, share, exposure scale)
+/// and output()), which becomes the picture shown.
+template <class Effect>
+void showThrough(FrameContext& context, float share) {
+  Effect& effect = context.modules.obtain<Effect>(context.shaders);
+  effect.apply(*context.shown, share, std::exp2(context.settings().toneMap.exposureEv));
+  context.shown = &effect.output();
+}
+
+}  // namespace
+
 
 std::string BloomPass::reason(const FrameState& state) const {
-  char share[32];
-  std::snprintf(share, sizeof share, "%g", double(state.settings.bloom));
-  return std::string("render.bloom = ") + share +
-         ": that share of the light above white spread by a glare PSF (1/r² over 2 to 64 pixels, flux kept) "
-         "into the picture shown; the radiance (EXR) unchanged";
+  return shareReason("render.bloom", state.settings.bloom,
+                     "that share of the light above white spread by a glare PSF (1/r² over 2 to 64 pixels, flux "
+                     "kept) into the picture shown; the radiance (EXR) unchanged");
 }
 
 PassIo BloomPass::io(const FrameState&) const {
@@ -179,21 +198,12 @@ PassIo BloomPass::io(const FrameState&) const {
   return {{resource::kCamera, "render.bloom"}, {}, {}};
 }
 
-void BloomPass::run(FrameContext& context, bool /*changed*/) {
-  const RenderSettings& s = context.settings();
-  Bloom& bloom = context.modules.obtain<Bloom>(context.shaders);
-  bloom.apply(*context.shown, s.bloom, std::exp2(s.toneMap.exposureEv));
-  context.shown = &bloom.output();
-}
-
-// --- local adaptation ------------------------------------------------------------------------------
+void BloomPass::run(FrameContext& context, bool /*changed*/) { showThrough<Bloom>(context, context.settings().bloom); }
 
 std::string LocalExposurePass::reason(const FrameState& state) const {
-  char share[32];
-  std::snprintf(share, sizeof share, "%g", double(state.settings.localExposure));
-  return std::string("render.local_exposure = ") + share +
-         ": the picture shown with each region's edge-aware mean log luminance (a bilateral grid) that share "
-         "nearer mid grey where it is darker; the radiance (EXR) unchanged";
+  return shareReason("render.local_exposure", state.settings.localExposure,
+                     "the picture shown with each region's edge-aware mean log luminance (a bilateral grid) that "
+                     "share nearer mid grey where it is darker; the radiance (EXR) unchanged");
 }
 
 PassIo LocalExposurePass::io(const FrameState&) const {
@@ -203,10 +213,7 @@ PassIo LocalExposurePass::io(const FrameState&) const {
 }
 
 void LocalExposurePass::run(FrameContext& context, bool /*changed*/) {
-  const RenderSettings& s = context.settings();
-  LocalExposure& local = context.modules.obtain<LocalExposure>(context.shaders);
-  local.apply(*context.shown, s.localExposure, std::exp2(s.toneMap.exposureEv));
-  context.shown = &local.output();
+  showThrough<LocalExposure>(context, context.settings().localExposure);
 }
 
 // --- the still's average ----------------------------------------------------------------------------

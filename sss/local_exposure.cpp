@@ -63,11 +63,7 @@ void LocalExposure::apply(const gpu::Texture& picture, float strength, float exp
   glBindImageTexture(1, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute(groups(w), groups(h), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindTextureUnit(0, 0);
-  glBindTextureUnit(1, 0);
-  glUseProgram(0);
+  gpu::unbindComputeState(2, 2);
 }
 
 }  // namespace tallow::sss

@@ -27,9 +27,7 @@ void StillAverage::add(const gpu::Texture& radiance, double weight, bool first) 
   // Later readers sample the texture, read it back or draw over it.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glUseProgram(0);
+  gpu::unbindComputeState(2, 0);
 }
 
 }  // namespace tallow::sss
