@@ -132,6 +132,7 @@ def run_peers(work, quick):
 VPL_COUNTS = [50, 80, 200]
 VPL_COST_COUNTS = [0, 50, 200, 800]
 VPL_COST_SIZES = ["160x120", "320x240"]
+CANDLE_VPL_TIME = 12.0  # [s] the default candle's receivers against the reference at this time
 
 
 def run_vpl(work, quick):
@@ -142,6 +143,10 @@ def run_vpl(work, quick):
            "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "16"),
            "--sweep", "vpl.count=" + ",".join(str(n) for n in [0] + VPL_COUNTS), "--receivers",
            "--ref-spp", "4" if quick else "64", "--out", f"{work}/vpl_receivers")
+    # The default candle at t = 12 s (issue 36: receivers within 10% at 80 VPLs on the candle too).
+    tallow("bench", "--preset", "candle", "--time", str(CANDLE_VPL_TIME), "--size", "64x36" if quick else "160x90", "--methods",
+           "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "16"), "--sweep", "vpl.count=0,80",
+           "--receivers", "--ref-spp", "4" if quick else "64", "--out", f"{work}/vpl_receivers_candle")
     # VPL shadows: an opaque block beside the holder, shadows off and on.
     tallow("bench", "--preset", "candle-holder-block", "--size", "64x48" if quick else "96x72", "--methods",
            "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "8"), "--sweep", "vpl.shadows=false,true",
@@ -153,14 +158,14 @@ def run_vpl(work, quick):
         for n in VPL_COST_COUNTS:
             tallow("capture", "--preset", "candle-holder", "--size", size, "--frames", "7", "--set", "sss.frames=2",
                    "--set", f"vpl.count={n}", "--out", f"{work}/vpl_cost/{size}_{n}")
-    # Flicker: the candle melting under a flame fixed where it is at t = 12 s, VPLs stable or
-    # re-drawn every frame; 30 frames per second.
+    # Flicker: the candle melting under a steady flame (flame.flicker=0) fixed where it is at t = 12 s,
+    # VPLs stable or re-drawn every frame; 30 frames per second.
     tallow("capture", "--preset", "candle", "--size", "64x48", "--frames", "1", "--out", f"{work}/flicker/flame")
     flame = load(f"{work}/flicker/flame/stats.json")["frames"][0]["point_lights"][0]
     for stable in ("true", "false"):
         tallow("capture", "--preset", "candle", "--size", "96x72" if quick else "160x120", "--frames",
                "4" if quick else "16", "--fps", "30", "--set", "light.position=%.6g,%.6g,%.6g" % tuple(flame),
-               "--set", f"vpl.stable={stable}", "--out", f"{work}/flicker/stable_{stable}")
+               "--set", "flame.flicker=0", "--set", f"vpl.stable={stable}", "--out", f"{work}/flicker/stable_{stable}")
     # The candle at the paper's Fig. 1 settings: K = 28, N = 45, 80 VPLs (every frame recomputes all).
     tallow("capture", "--preset", "candle", "--size", "160x120" if quick else "640x480", "--frames", "3",
            "--set", "sss.maps=28", "--set", "sss.samples=45", "--set", "vpl.count=80", "--set", "sss.history=0",
@@ -571,6 +576,24 @@ def report_vpl(work, add, images, rel_images):
             pct(without_reference_noise(e.get("rel_rmse"), em.get("rel_error"))), fmt(e.get("mean_ratio")),
             fmt(row["gpu_ms_median"].get("vpl"), 1), fmt(row["gpu_ms_median"].get("surface"), 1)))
     add("")
+    c = load(f"{work}/vpl_receivers_candle/bench.json")
+    cem = c["references"][0].get("emergent", {})
+    add("The default candle (`presets/candle.json`, t = %s s, the flame in its cup), %dx%d, maps converged over %s"
+        " frames, against the same kind of reference (%s emitter points per pass, %s passes; ε over the receivers %s,"
+        " %s receiver pixels):" % (fmt(CANDLE_VPL_TIME, 0),
+                                   c["width"], c["height"], c["rows"][0]["parameters"]["sss.frames"],
+                                   cem.get("emitter_points"), c["references"][0].get("passes"),
+                                   pct(cem.get("rel_error")), cem.get("receiver_pixels")))
+    add("")
+    add("| N_vpl | receivers' rel. RMSE | without the reference's ε | mean / reference | vpl pass [ms] | surface pass [ms] |")
+    add("|---:|---:|---:|---:|---:|---:|")
+    for row in c["rows"]:
+        e = row.get("receiver_error", {})
+        add("| %s | %s | %s | %s | %s | %s |" % (
+            row["settings"]["vpl.count"], pct(e.get("rel_rmse")),
+            pct(without_reference_noise(e.get("rel_rmse"), cem.get("rel_error"))), fmt(e.get("mean_ratio")),
+            fmt(row["gpu_ms_median"].get("vpl"), 1), fmt(row["gpu_ms_median"].get("surface"), 1)))
+    add("")
     s = load(f"{work}/vpl_shadows/bench.json")
     sem = s["references"][0].get("emergent", {})
     add("VPL shadows (`vpl.shadows`, clustered cube shadow maps, docs/vpl.md) on `candle-holder-block`, an opaque block")
@@ -621,8 +644,8 @@ def report_vpl(work, add, images, rel_images):
         " than at N = 0 by half the range of the N = 0 frames' times, %s.)" % ", ".join(spreads))
     add("")
     # Flicker.
-    add("Temporal stability: the candle melting from t = 12 s at 30 frames per second under a flame fixed where it")
-    add("is at 12 s; the mean absolute frame-to-frame change of the receivers' radiance relative to their mean")
+    add("Temporal stability: the candle melting from t = 12 s at 30 frames per second under a steady flame")
+    add("(`flame.flicker=0`) fixed where it is at 12 s; the mean absolute frame-to-frame change of the receivers' radiance relative to their mean")
     add("(stats.json `receiver_change`), with the paper's fixed directions and with VPLs re-drawn every frame. The")
     add("maps keep each texel's history while the candle deforms (`sss.history`, the default), rescaled to this frame's")
     add("estimate, so part of their noise changes from frame to frame too.")
@@ -789,15 +812,29 @@ def report_gpu(folder, md):
         f.write("\n".join(L) + "\n")
 
 
+def splice_vpl(work, md, images):
+    """Only the VPL section, regenerated from run_vpl's runs and put in place in MD."""
+    os.makedirs(images, exist_ok=True)
+    lines = []
+    report_vpl(work, lines.append, images, os.path.relpath(images, os.path.dirname(md)))
+    results_sections.splice(md, lines[0], lines)
+
+
 def main(argv):
     if len(argv) >= 2 and argv[0] == "run":
         run(argv[1], "--quick" in argv[2:])
+    elif len(argv) >= 2 and argv[0] == "run-vpl":
+        os.makedirs(argv[1], exist_ok=True)
+        run_vpl(argv[1], "--quick" in argv[2:])
+    elif len(argv) == 4 and argv[0] == "splice-vpl":
+        splice_vpl(argv[1], argv[2], argv[3])
     elif len(argv) == 4 and argv[0] == "report":
         report(argv[1], argv[2], argv[3])
     elif len(argv) == 3 and argv[0] == "gpu":
         report_gpu(argv[1], argv[2])
     else:
-        sys.exit("usage: results_bench.py run DIR [--quick] | report DIR MD IMAGES | gpu FOLDER MD")
+        sys.exit("usage: results_bench.py run DIR [--quick] | run-vpl DIR [--quick] | report DIR MD IMAGES |"
+                 " splice-vpl DIR MD IMAGES | gpu FOLDER MD")
 
 
 if __name__ == "__main__":

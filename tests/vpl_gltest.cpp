@@ -3,6 +3,7 @@
 // receiver that sees the light only through the VPLs, the backlit placement, and finiteness.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -85,6 +86,18 @@ TEST(Vpl, SolidAngleAreasAddUpToTheSurfaceArea) {
   std::printf("[ vpl ] sum of A_v = %.6g m^2, 6a^2 = %.6g m^2 (ratio %.5f)\n", area, 6 * a * a, area / (6 * a * a));
   EXPECT_NEAR(area / (6 * a * a), 1.0, 0.01);
 
+  // The cells' parts: 16 squares of each VPL's cell of solid angle 4π/N, their solid angles adding
+  // up to the cell's, so their areas too add up to the surface's.
+  double partArea = 0.0;
+  for (const sss::VplRecord& r : vpls->readParts()) {
+    ASSERT_GT(r.position.w, 0.0f) << "every part's direction meets the closed cube";
+    partArea += r.normal.w;
+    const glm::vec3 d = glm::vec3(r.position) - c;
+    EXPECT_NEAR(std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}), a / 2, a / 200) << "on the cube's surface";
+  }
+  std::printf("[ vpl ] sum of the parts' areas = %.6g m^2 (ratio %.5f)\n", partArea, partArea / (6 * a * a));
+  EXPECT_NEAR(partArea / (6 * a * a), 1.0, 0.01);
+
   // The paper's Eq. 16 weight: A_box / N each.
   s.settings().vpl.area = sss::VplArea::BoundingBox;
   s.render();
@@ -127,10 +140,63 @@ TEST(Vpl, FluxMatchesADenseEstimateWithinSamplingError) {
   EXPECT_NEAR(mean / denseTotal, 1.0, 1e-3);
 }
 
-TEST(Vpl, OneVplsIrradianceOnTheFloorMatchesTheDiscFormula) {
-  // The floor's radiance with VPLs minus without is ρ/π Σ_v F_t(cos θ_v) (B_v/π) A_v cos θ_v cos θ_r
-  // / (d² + A_v/π), each term the on-axis irradiance of a Lambertian disc of area A_v (no VPL
-  // shadows). Evaluated here from the VPL records at every floor pixel's world position.
+/// A VPL's irradiance at p (normal n) as a point: F_t (B/π) A cos θ_v cos θ_r / (d² + A/π).
+glm::dvec3 pointIrradiance(const sss::VplRecord& r, const glm::dvec3& p, const glm::dvec3& n) {
+  const glm::dvec3 toP = p - glm::dvec3(glm::vec3(r.position));
+  const double d2 = glm::dot(toP, toP);
+  const glm::dvec3 u = toP / std::sqrt(d2);
+  const double cosV = glm::dot(glm::dvec3(glm::vec3(r.normal)), u), cosR = -glm::dot(n, u);
+  if (cosV <= 0 || cosR <= 0) return glm::dvec3(0.0);
+  const double area = r.normal.w;
+  return sss::fresnelTransmittance(cosV, r.position.w) * glm::dvec3(glm::vec3(r.radiance)) * area * cosV * cosR /
+         (d2 + area / kPi);
+}
+
+/// The same VPL as the patch it stands for (vpl_receiver.glsl): the rectangle of area A in its
+/// tangent plane, 1/cos α longer along the surface's tilt away from the centre c, of radiance
+/// F_t(θ_v at its centre) B/π, its irradiance at p integrated numerically (a 256² midpoint grid of
+/// the point kernel cos θ cos θ_r / d², the part below p's horizon left out) — a second way to the
+/// polygon formula the shader evaluates.
+glm::dvec3 patchIrradiance(const sss::VplRecord& r, const glm::dvec3& c, const glm::dvec3& p, const glm::dvec3& n) {
+  const glm::dvec3 x(glm::vec3(r.position)), nv(glm::vec3(r.normal));
+  const glm::dvec3 toP = p - x;
+  const double cosV = glm::dot(nv, glm::normalize(toP));
+  if (cosV <= 0) return glm::dvec3(0.0);
+  const glm::dvec3 rc = x - c;
+  const glm::dvec3 tilt = rc - glm::dot(rc, nv) * nv;
+  const double cosAlpha = std::max(std::abs(glm::dot(nv, glm::normalize(rc))), 0.1);
+  const glm::dvec3 t1 = glm::dot(tilt, tilt) > 1e-12 * glm::dot(rc, rc)
+                            ? glm::normalize(tilt)
+                            : glm::normalize(std::abs(nv.y) < 0.9 ? glm::cross(glm::dvec3(0, 1, 0), nv)
+                                                                  : glm::cross(glm::dvec3(1, 0, 0), nv));
+  const glm::dvec3 t2 = glm::cross(nv, t1);
+  const double area = r.normal.w, s1 = std::sqrt(area / cosAlpha), s2 = std::sqrt(area * cosAlpha);
+  constexpr int kGrid = 256;
+  double sum = 0.0;
+  for (int a = 0; a < kGrid; ++a)
+    for (int b = 0; b < kGrid; ++b) {
+      const glm::dvec3 q = x + ((a + 0.5) / kGrid - 0.5) * s1 * t1 + ((b + 0.5) / kGrid - 0.5) * s2 * t2;
+      const glm::dvec3 d = p - q;
+      const double d2 = glm::dot(d, d), cosR = -glm::dot(n, d) / std::sqrt(d2);
+      if (cosR <= 0) continue;
+      sum += glm::dot(nv, d) / std::sqrt(d2) * cosR / d2;
+    }
+  return sss::fresnelTransmittance(cosV, r.position.w) * glm::dvec3(glm::vec3(r.radiance)) * (sum * area / (double(kGrid) * kGrid));
+}
+
+/// vpl_receiver.glsl's blends: a record's point beyond `far` sides (√A), its patch or parts within `near`.
+double patchShare(const sss::VplRecord& r, const glm::dvec3& p, double near = 2.0, double far = 4.0) {
+  const double sides = glm::length(p - glm::dvec3(glm::vec3(r.position))) / std::sqrt(double(r.normal.w));
+  const double t = std::clamp((sides - near) / (far - near), 0.0, 1.0);
+  return 1.0 - t * t * (3.0 - 2.0 * t);
+}
+
+TEST(Vpl, VplsLightTheFloorAsPointsFarAndThroughTheirCellsPartsNear) {
+  // The floor's radiance with VPLs minus without is ρ/π Σ_v E_v: beyond 3 sides (√A_v) of a VPL E_v
+  // is its point's F_t (B_v/π) A_v cos θ_v cos θ_r / (d² + A_v/π); within 1.5 sides the sum over the
+  // 16 parts of its cell, each in turn its point far and the patch it stands for near (the patch by
+  // numerical integration, its blend from 4 to 2 of its sides); between the two a smoothstep blend
+  // (no VPL shadows). Evaluated here from the records at every floor pixel's world position.
   test::TempDir dir;
   const double view = 0.2, a = 0.04;
   const std::string preset = write(dir, "cube", cubeScene(a, 0.03, {0.4, 0.8, 0.2}, view));
@@ -140,36 +206,55 @@ TEST(Vpl, OneVplsIrradianceOnTheFloorMatchesTheDiscFormula) {
   PresetSession on(preset, with(base, {"vpl.count=3"}));
   const gpu::Image without = off.render(), withVpls = on.render();
   const std::vector<sss::VplRecord> records = on.renderer().virtualPointLights()->read();
-  int compared = 0, lit = 0;
-  double worst = 0.0;
+  const std::vector<sss::VplRecord> parts = on.renderer().virtualPointLights()->readParts();
+  ASSERT_EQ(parts.size(), 16 * records.size());
+  const glm::dvec3 centre(on.renderer().virtualPointLights()->centre());
+  int compared = 0, lit = 0, near = 0, patches = 0;
+  double worst = 0.0, worstOfPeak = 0.0;
+  struct Value { int i, j, c; double expected, measured; };
+  std::vector<Value> values;
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
       const double x = ((i + 0.5) / w - 0.5) * view, z = ((j + 0.5) / h - 0.5) * view;
       if (std::abs(x) < a / 2 + view / w && std::abs(z) < a / 2 + view / h) continue;  // under the cube
       const glm::dvec3 p(x, 0.0, z), n(0, 1, 0);
       glm::dvec3 e(0.0);
-      for (const sss::VplRecord& r : records) {
+      for (std::size_t v = 0; v < records.size(); ++v) {
+        const sss::VplRecord& r = records[v];
         if (r.position.w <= 0.0f) continue;
-        const glm::dvec3 toP = p - glm::dvec3(glm::vec3(r.position));
-        const double d2 = glm::dot(toP, toP);
-        const glm::dvec3 u = toP / std::sqrt(d2);
-        const double cosV = glm::dot(glm::dvec3(glm::vec3(r.normal)), u), cosR = -glm::dot(n, u);
-        if (cosV <= 0 || cosR <= 0) continue;
-        const double area = r.normal.w;
-        e += sss::fresnelTransmittance(cosV, r.position.w) * glm::dvec3(glm::vec3(r.radiance)) * area * cosV * cosR /
-             (d2 + area / kPi);
+        const double share = patchShare(r, p, 1.5, 3.0);
+        if (share < 1) e += (1.0 - share) * pointIrradiance(r, p, n);
+        if (share <= 0) continue;
+        ++near;
+        for (std::size_t k = 0; k < 16; ++k) {
+          const sss::VplRecord& q = parts[16 * v + k];
+          if (q.position.w <= 0.0f) continue;
+          const double patch = patchShare(q, p);
+          if (patch < 1) e += share * (1.0 - patch) * pointIrradiance(q, p, n);
+          if (patch > 0) {
+            ++patches;
+            e += share * patch * patchIrradiance(q, centre, p, n);
+          }
+        }
       }
-      for (int c = 0; c < 3; ++c) {
-        const double expected = 0.5 / kPi * e[c];
-        const double measured = withVpls.at(i, j)[c] - without.at(i, j)[c];
-        if (expected > 0) ++lit;
-        worst = std::max(worst, std::abs(measured - expected) / std::max(expected, 1e-9));
-        EXPECT_NEAR(measured, expected, 5e-3 * expected + 1e-9) << "pixel " << i << "," << j << " band " << c;
-        ++compared;
-      }
+      for (int c = 0; c < 3; ++c) values.push_back({i, j, c, 0.5 / kPi * e[c], withVpls.at(i, j)[c] - without.at(i, j)[c]});
     }
-  std::printf("[ vpl ] %d floor values, %d lit by the VPLs, worst relative difference %.2g\n", compared, lit, worst);
+  // Where a patch is seen edge-on its polygon sum cancels to a tiny value, which float evaluates to
+  // about 1e-5 of the brightest term; relative 0.5% elsewhere.
+  double peak = 0.0;
+  for (const Value& v : values) peak = std::max(peak, v.expected);
+  for (const Value& v : values) {
+    if (v.expected > 0) ++lit;
+    worst = std::max(worst, std::abs(v.measured - v.expected) / std::max(v.expected, 1e-9));
+    worstOfPeak = std::max(worstOfPeak, std::abs(v.measured - v.expected) / peak);
+    EXPECT_NEAR(v.measured, v.expected, 5e-3 * v.expected + 1e-4 * peak) << "pixel " << v.i << "," << v.j << " band " << v.c;
+    ++compared;
+  }
+  std::printf("[ vpl ] %d floor values, %d lit by the VPLs, %d pixel-VPL pairs near, %d pixel-part pairs as patches; "
+              "worst relative difference %.2g, %.2g of the peak\n", compared, lit, near, patches, worst, worstOfPeak);
   EXPECT_GT(lit, compared / 4) << "the VPLs must light a good part of the floor for this to test anything";
+  EXPECT_GT(near, 100) << "the VPLs must be near enough to part of the floor for this to test their parts";
+  EXPECT_GT(patches, 100) << "the parts must be near enough to part of the floor for this to test their patches";
 }
 
 /// presets/candle-holder.json without its directional fill: the point light inside the cup is
@@ -273,7 +358,9 @@ TEST(Vpl, TheTableAgainstTheReferencesEmergentLight) {
                 100 * e.relRmse, e.meanRatio, e.pixels);
     // The mean: the reference's noise on it is far below its per-pixel 10%; measured within 2.5%.
     EXPECT_NEAR(e.meanRatio, 1.0, 0.1) << "N_vpl " << n;
-    EXPECT_LT(e.relRmse, 0.35) << "N_vpl " << n;  // measured 29%, 23%, 17% with the reference's ε inside
+    // Measured 13.6%, 12.6%, 12.2% with the reference's ε (10%) inside, i.e. about 8% of the VPLs'
+    // own; the cells' patches without parts gave 17.5%, 17.1%, 14.4%, Halton points 29%, 23%, 17%.
+    EXPECT_LT(e.relRmse, 0.2) << "N_vpl " << n;
     errors.push_back(e.relRmse);
   }
   EXPECT_LT(errors.back(), errors.front()) << "more VPLs, less error";

@@ -37,6 +37,9 @@ struct VplRecord {
 /// (area-uniform on the sphere; the maps' directions are the same sequence from 0).
 std::vector<glm::vec3> vplDirections(int count, int first);
 
+/// The N_vpl stable directions (vpl.stable): a spherical Fibonacci lattice, the same every frame.
+std::vector<glm::vec3> stableVplDirections(int count);
+
 /// The shadow cluster of each direction: the nearest of `clusters` Halton directions (fixed, so a
 /// VPL keeps its cluster from frame to frame).
 std::vector<int> vplClusters(const std::vector<glm::vec3>& directions, int clusters);
@@ -83,12 +86,14 @@ class VirtualPointLights {
   float boxArea() const { return boxArea_; }
   /// The records of the last render (reads the GPU buffer: tests and stats).
   std::vector<VplRecord> read() const;
+  /// The parts of each VPL's cell (maps/vpl_record.glsl's VPL_PARTS per VPL, in VPL order).
+  std::vector<VplRecord> readParts() const;
   std::size_t bytes() const;
 
  private:
   gpu::Program cubeProgram_, compute_;
   gpu::Texture cubePosition_, cubeNormal_, cubeDepth_;
-  gpu::Buffer records_, directions_, faceViews_;
+  gpu::Buffer records_, parts_, directions_, faceViews_;
   ShadowPass shadows_;                       ///< the clusters' cube shadow maps, as point lights
   std::vector<glm::vec3> clusterCentre_;     ///< per cluster: its shadow camera
   std::vector<float> clusterRange_;          ///< per cluster: distance stored as depth 1 (0: no cluster)
