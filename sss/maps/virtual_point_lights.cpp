@@ -14,7 +14,7 @@ constexpr GLuint kRecordsBinding = 6;     // maps/vpl.comp, maps/vpl_receiver.gl
 constexpr GLuint kDirectionsBinding = 7;  // maps/vpl.comp
 constexpr GLuint kPartsBinding = 8;       // maps/vpl.comp, maps/vpl_receiver.glsl
 /// maps/vpl_record.glsl's VPL_PARTS: the records each VPL's cell is split into for near receivers.
-constexpr int kPartsPerVpl = 16;
+constexpr int kPartsPerVpl = 9;
 constexpr GLuint kMapsUnit = 0, kMapDepthUnit = 1, kCubePositionUnit = 2, kCubeNormalUnit = 3;
 /// A fixed start of the stable directions' Halton index, away from the maps' first directions.
 constexpr int kStableFirst = 1024;
