@@ -132,7 +132,12 @@ def run_peers(work, quick):
 VPL_COUNTS = [50, 80, 200]
 VPL_COST_COUNTS = [0, 50, 200, 800]
 VPL_COST_SIZES = ["160x120", "320x240"]
-CANDLE_VPL_TIME = 12.0  # [s] the default candle's receivers against the reference at this time
+# [s] the default candle's receivers against the reference at these times (16: its start_s, with a puddle)
+CANDLE_VPL_TIMES = [12.0, 16.0]
+
+
+def candle_vpl_folder(work, t):
+    return f"{work}/vpl_receivers_candle" + ("" if t == 12.0 else "_%g" % t)
 
 
 def run_vpl(work, quick):
@@ -144,9 +149,10 @@ def run_vpl(work, quick):
            "--sweep", "vpl.count=" + ",".join(str(n) for n in [0] + VPL_COUNTS), "--receivers",
            "--ref-spp", "4" if quick else "64", "--out", f"{work}/vpl_receivers")
     # The default candle at t = 12 s (issue 36: receivers within 10% at 80 VPLs on the candle too).
-    tallow("bench", "--preset", "candle", "--time", str(CANDLE_VPL_TIME), "--size", "64x36" if quick else "160x90", "--methods",
-           "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "16"), "--sweep", "vpl.count=0,80",
-           "--receivers", "--ref-spp", "4" if quick else "64", "--out", f"{work}/vpl_receivers_candle")
+    for t in CANDLE_VPL_TIMES:
+        tallow("bench", "--preset", "candle", "--time", str(t), "--size", "64x36" if quick else "160x90", "--methods",
+               "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "16"), "--sweep", "vpl.count=0,80",
+               "--receivers", "--ref-spp", "4" if quick else "64", "--out", candle_vpl_folder(work, t))
     # VPL shadows: an opaque block beside the holder, shadows off and on.
     tallow("bench", "--preset", "candle-holder-block", "--size", "64x48" if quick else "96x72", "--methods",
            "radiosity-maps", "--set", "sss.frames=" + ("2" if quick else "8"), "--sweep", "vpl.shadows=false,true",
@@ -576,23 +582,24 @@ def report_vpl(work, add, images, rel_images):
             pct(without_reference_noise(e.get("rel_rmse"), em.get("rel_error"))), fmt(e.get("mean_ratio")),
             fmt(row["gpu_ms_median"].get("vpl"), 1), fmt(row["gpu_ms_median"].get("surface"), 1)))
     add("")
-    c = load(f"{work}/vpl_receivers_candle/bench.json")
-    cem = c["references"][0].get("emergent", {})
-    add("The default candle (`presets/candle.json`, t = %s s, the flame in its cup), %dx%d, maps converged over %s"
-        " frames, against the same kind of reference (%s emitter points per pass, %s passes; ε over the receivers %s,"
-        " %s receiver pixels):" % (fmt(CANDLE_VPL_TIME, 0),
-                                   c["width"], c["height"], c["rows"][0]["parameters"]["sss.frames"],
-                                   cem.get("emitter_points"), c["references"][0].get("passes"),
-                                   pct(cem.get("rel_error")), cem.get("receiver_pixels")))
+    candles = [(t, load(candle_vpl_folder(work, t) + "/bench.json")) for t in CANDLE_VPL_TIMES]
+    c = candles[0][1]
+    add("The default candle (`presets/candle.json`, the flame in its cup), %dx%d, maps converged over %s frames, against"
+        " the same kind of reference (%s emitter points per pass, %s passes), at two times:"
+        % (c["width"], c["height"], c["rows"][0]["parameters"]["sss.frames"],
+           c["references"][0].get("emergent", {}).get("emitter_points"), c["references"][0].get("passes")))
     add("")
-    add("| N_vpl | receivers' rel. RMSE | without the reference's ε | mean / reference | vpl pass [ms] | surface pass [ms] |")
-    add("|---:|---:|---:|---:|---:|---:|")
-    for row in c["rows"]:
-        e = row.get("receiver_error", {})
-        add("| %s | %s | %s | %s | %s | %s |" % (
-            row["settings"]["vpl.count"], pct(e.get("rel_rmse")),
-            pct(without_reference_noise(e.get("rel_rmse"), cem.get("rel_error"))), fmt(e.get("mean_ratio")),
-            fmt(row["gpu_ms_median"].get("vpl"), 1), fmt(row["gpu_ms_median"].get("surface"), 1)))
+    add("| t [s] | N_vpl | receiver pixels | reference ε | receivers' rel. RMSE | without the reference's ε | mean / reference | vpl pass [ms] | surface pass [ms] |")
+    add("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for t, c in candles:
+        cem = c["references"][0].get("emergent", {})
+        for row in c["rows"]:
+            e = row.get("receiver_error", {})
+            add("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                fmt(t, 0), row["settings"]["vpl.count"], cem.get("receiver_pixels"), pct(cem.get("rel_error")),
+                pct(e.get("rel_rmse")), pct(without_reference_noise(e.get("rel_rmse"), cem.get("rel_error"))),
+                fmt(e.get("mean_ratio")), fmt(row["gpu_ms_median"].get("vpl"), 1),
+                fmt(row["gpu_ms_median"].get("surface"), 1)))
     add("")
     s = load(f"{work}/vpl_shadows/bench.json")
     sem = s["references"][0].get("emergent", {})
@@ -613,7 +620,8 @@ def report_vpl(work, add, images, rel_images):
     # Costs.
     add("Cost against N_vpl and receiver pixels (candle holder; llvmpipe, so the ratios matter, not the ms): the `vpl`")
     add("pass (cube of the outermost surface + one compute invocation per VPL; medians over the frames that ran it)")
-    add("and the `surface` pass once the maps are converged (the receivers loop over every VPL).")
+    add("and the `surface` pass once the maps are converged (the receivers loop over every VPL, and those within 3")
+    add("sides of a VPL over its cell's 9 parts as well, docs/vpl.md, so the cost per VPL and pixel falls as N_vpl grows).")
     add("")
     add("| size | N_vpl | receiver pixels | vpl pass [ms] | surface pass [ms] | surface − surface(N=0) per 1000 VPL·Mpixel [ms] |")
     add("|---|---:|---:|---:|---:|---:|")
