@@ -81,6 +81,15 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
       dx *= narrow;
       dy *= narrow;
     }
+    // The filtered look-up reads about a footprint around x_o (its mip level's texels are aligned
+    // blocks of the footprint's size): if a surface nearer the map lies within it (the candle's rim
+    // beside the puddle it overhangs, seen from above), that surface's B would be averaged in, so
+    // the footprint's corners are tested too and such a look-up is an edge as well.
+    if (!edge && max(length(dx), length(dy)) > 2.0 * texel.x) {
+      vec2 a = dx + dy, b = dx - dy;
+      vec2 corners[4] = vec2[4](t.xy + a, t.xy - a, t.xy + b, t.xy - b);
+      for (int i = 0; i < 4 && !edge; ++i) edge = texture(uMapDepth, vec4(corners[i], float(k), z)) < 1.0;
+    }
     // Where x_o lies at the edge of what map k sees (a puddle beside the candle's foot, seen from
     // above past the candle's top), a filtered look-up would mix in the texels of the surface in
     // front, whose B can be many times x_o's: bright and dark single pixels along the edge (issue
