@@ -103,7 +103,7 @@ std::size_t vplBytes(const VplSettings& vpl) {
     return Texture::bytesFor(GL_TEXTURE_CUBE_MAP, format, vpl.cubeSize, vpl.cubeSize, 6, 1);
   };
   const auto count = static_cast<std::size_t>(vpl.count);
-  return 2 * cube(GL_RGBA32F) + cube(GL_DEPTH_COMPONENT32F) + count * sizeof(VplRecord) + count * sizeof(glm::vec4) +
+  return 2 * cube(GL_RGBA32F) + cube(GL_DEPTH_COMPONENT32F) + (1 + kVplParts) * count * sizeof(VplRecord) + count * sizeof(glm::vec4) +
          sizeof(std::array<glm::mat4, 6>);
 }
 

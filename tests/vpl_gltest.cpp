@@ -207,7 +207,7 @@ TEST(Vpl, VplsLightTheFloorAsPointsFarAndThroughTheirCellsPartsNear) {
   const gpu::Image without = off.render(), withVpls = on.render();
   const std::vector<sss::VplRecord> records = on.renderer().virtualPointLights()->read();
   const std::vector<sss::VplRecord> parts = on.renderer().virtualPointLights()->readParts();
-  constexpr std::size_t kParts = 9;  // maps/vpl_record.glsl's VPL_PARTS
+  constexpr std::size_t kParts = sss::kVplParts;
   ASSERT_EQ(parts.size(), kParts * records.size());
   const glm::dvec3 centre(on.renderer().virtualPointLights()->centre());
   int compared = 0, lit = 0, near = 0, patches = 0;

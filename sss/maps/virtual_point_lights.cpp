@@ -13,8 +13,6 @@ namespace {
 constexpr GLuint kRecordsBinding = 6;     // maps/vpl.comp, maps/vpl_receiver.glsl
 constexpr GLuint kDirectionsBinding = 7;  // maps/vpl.comp
 constexpr GLuint kPartsBinding = 8;       // maps/vpl.comp, maps/vpl_receiver.glsl
-/// maps/vpl_record.glsl's VPL_PARTS: the records each VPL's cell is split into for near receivers.
-constexpr int kPartsPerVpl = 9;
 constexpr GLuint kMapsUnit = 0, kMapDepthUnit = 1, kCubePositionUnit = 2, kCubeNormalUnit = 3;
 /// A fixed start of the stable directions' Halton index, away from the maps' first directions.
 constexpr int kStableFirst = 1024;
@@ -144,8 +142,8 @@ void VirtualPointLights::checkLimits(const Scene& scene, const RenderSettings& s
   if (settings.vpl.cubeSize > maxCube)
     throw std::invalid_argument("vpl.cube_size: " + std::to_string(settings.vpl.cubeSize) +
                                 " exceeds this GPU's GL_MAX_CUBE_MAP_TEXTURE_SIZE of " + std::to_string(maxCube));
-  // The largest block is the parts' (kPartsPerVpl records per VPL).
-  const auto bytes = static_cast<long long>(settings.vpl.count) * kPartsPerVpl * static_cast<long long>(sizeof(VplRecord));
+  // The largest block is the parts' (kVplParts records per VPL).
+  const auto bytes = static_cast<long long>(settings.vpl.count) * kVplParts * static_cast<long long>(sizeof(VplRecord));
   if (settings.vpl.shadows && 6 * settings.vpl.shadowClusters > [] {
         GLint layers = 0;
         glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
@@ -212,8 +210,8 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   }
   if (records_.size() != static_cast<std::size_t>(count_) * sizeof(VplRecord))
     records_ = gpu::Buffer(static_cast<std::size_t>(count_) * sizeof(VplRecord));
-  if (parts_.size() != static_cast<std::size_t>(count_) * kPartsPerVpl * sizeof(VplRecord))
-    parts_ = gpu::Buffer(static_cast<std::size_t>(count_) * kPartsPerVpl * sizeof(VplRecord));
+  if (parts_.size() != static_cast<std::size_t>(count_) * kVplParts * sizeof(VplRecord))
+    parts_ = gpu::Buffer(static_cast<std::size_t>(count_) * kVplParts * sizeof(VplRecord));
 
   // Step 1: the outermost surface around the centre.
   const int cube = v.cubeSize;
@@ -257,7 +255,7 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecordsBinding, records_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionsBinding, directions_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPartsBinding, parts_.id());
-  glDispatchCompute(static_cast<GLuint>((count_ * (1 + kPartsPerVpl) + 63) / 64), 1, 1);
+  glDispatchCompute(static_cast<GLuint>((count_ * (1 + kVplParts) + 63) / 64), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   glUseProgram(0);
 
@@ -326,7 +324,7 @@ std::vector<VplRecord> VirtualPointLights::read() const {
 }
 
 std::vector<VplRecord> VirtualPointLights::readParts() const {
-  std::vector<VplRecord> out(static_cast<std::size_t>(count_) * kPartsPerVpl);
+  std::vector<VplRecord> out(static_cast<std::size_t>(count_) * kVplParts);
   if (count_ > 0) parts_.download(0, out.size() * sizeof(VplRecord), out.data());
   return out;
 }

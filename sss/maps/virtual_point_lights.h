@@ -33,6 +33,10 @@ struct VplRecord {
   glm::vec4 radiance{0.0f};  ///< rgb: B(x_v)/π [W/(m²·sr)], the radiance before Fresnel; w: its shadow cluster
 };
 
+/// The parts each VPL's cell is split into for receivers near it, records of the same layout
+/// (shaders/maps/vpl_record.glsl's VPL_PARTS).
+constexpr int kVplParts = 9;
+
 /// The N_vpl directions from the bounding box's centre: Halton directions `first` … `first` + count − 1
 /// (area-uniform on the sphere; the maps' directions are the same sequence from 0).
 std::vector<glm::vec3> vplDirections(int count, int first);
