@@ -29,7 +29,7 @@ const float VPL_PI = 3.14159265358979;
 // d, cut into VPL_PART_SIDE² squares on the tangent plane at d (gnomonic); each part's solid angle
 // is its square's cos³θ-weighted share of 4π/N, so that the parts' solid angles add up to the cell's.
 vec3 partDirection(vec3 d, int k, out float solidAngleShare) {
-  vec3 u = normalize(abs(d.y) < 0.9 ? cross(vec3(0.0, 1.0, 0.0), d) : cross(vec3(1.0, 0.0, 0.0), d));
+  vec3 u = vplPerpendicular(d);
   vec3 w = cross(d, u);
   float side = sqrt(4.0 * VPL_PI / float(uVplCount));  // tan of the half side, as a length at unit distance
   float sum = 0.0, mine = 0.0;
@@ -77,7 +77,7 @@ void main() {
       // A VPL stands for A_v of surface: read B averaged over that much, i.e. at the maps' mip level
       // whose footprint is √A_v (Algorithm 1 takes the footprint as two tangent vectors), so that
       // one noisy texel does not become one bright VPL.
-      vec3 t1 = normalize(abs(n.y) < 0.9 ? cross(vec3(0.0, 1.0, 0.0), n) : cross(vec3(1.0, 0.0, 0.0), n));
+      vec3 t1 = vplPerpendicular(n);
       vec3 t2 = cross(n, t1);
       float side = sqrt(area);
       float seenBy = 0.0;

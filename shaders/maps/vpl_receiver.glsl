@@ -62,9 +62,7 @@ vec3 vplSquareIrradiance(VplGpu l, vec3 p, vec3 n) {
   vec3 r = x - uVplCentre;
   vec3 tilt = r - dot(r, nv) * nv;
   float cosAlpha = max(abs(dot(nv, normalize(r))), VPL_MIN_COS_ALPHA);
-  vec3 t1 = dot(tilt, tilt) > 1e-12 * dot(r, r)
-                ? normalize(tilt)
-                : normalize(abs(nv.y) < 0.9 ? cross(vec3(0.0, 1.0, 0.0), nv) : cross(vec3(1.0, 0.0, 0.0), nv));
+  vec3 t1 = dot(tilt, tilt) > 1e-12 * dot(r, r) ? normalize(tilt) : vplPerpendicular(nv);
   vec3 t2 = cross(nv, t1);
   float h1 = 0.5 * sqrt(l.normal.w / cosAlpha), h2 = 0.5 * sqrt(l.normal.w * cosAlpha);
   vec3 corner[4] = vec3[4](x - h1 * t1 - h2 * t2, x + h1 * t1 - h2 * t2, x + h1 * t1 + h2 * t2, x - h1 * t1 + h2 * t2);
@@ -110,9 +108,10 @@ vec3 vplPointOrPatch(VplGpu l, vec3 p, vec3 n) {
   return e;
 }
 
-// Irradiance at receiver point p (normal n) from all VPLs [W/m²]. Near a VPL its parts stand in for it: one patch of one radiance is a poor stand-in for a
-// surface whose radiance changes across the cell (a wall darkening toward its foot), and the cells'
-// rectangles do not tile the surface, which a receiver within a side of it would show as scallops.
+// Irradiance at receiver point p (normal n) from all VPLs [W/m²]. Near a VPL its parts stand in
+// for it: one patch of one radiance is a poor stand-in for a surface whose radiance changes across
+// the cell (a wall darkening toward its foot), and the cells' rectangles do not tile the surface,
+// which a receiver within a side of it would show as scallops.
 vec3 vplIrradiance(vec3 p, vec3 n) {
   vec3 e = vec3(0.0);
   for (int v = 0; v < uVplCount; ++v) {

@@ -7,6 +7,11 @@ struct VplGpu { vec4 position; vec4 normal; vec4 radiance; };
 // against single VPLs of unbounded area at silhouettes seen edge-on.
 const float VPL_MIN_COS_ALPHA = 0.1;
 
+// A unit vector perpendicular to the unit vector n: a tangent for a VPL's frame.
+vec3 vplPerpendicular(vec3 n) {
+  return normalize(abs(n.y) < 0.9 ? cross(vec3(0.0, 1.0, 0.0), n) : cross(vec3(1.0, 0.0, 0.0), n));
+}
+
 // Each VPL's solid-angle cell is also split into VPL_PART_SIDE² parts, records of the same layout
 // (a part's area is its share of A_v), which a receiver near the VPL uses instead of the VPL: the
 // surface's own positions, normals and B inside the cell rather than one patch of one radiance.
