@@ -24,10 +24,12 @@ CameraView FrameContext::camera() const {
   const float aspect = static_cast<float>(settings().width) / static_cast<float>(settings().height);
   CameraView view = cameraView(scene().camera, aspect, geometry.worldBounds());
   if (cameraJitter != glm::vec2(0.0f)) {
-    // A shift of the image by the offset: NDC moves 2 / size per pixel, for perspective and
-    // orthographic cameras alike (the translation acts on clip coordinates before the divide).
+    // The pixel looks through its centre plus the offset, in pixels with x right and y down as the
+    // reference's pass does (sss/pixel_jitter.h): the image shifts by −x and +y in NDC (y up), 2 /
+    // size per pixel, for perspective and orthographic cameras alike (the translation acts on clip
+    // coordinates before the divide). A shift by +x sampled the x-mirror of the reference's points.
     glm::mat4 shift(1.0f);
-    shift[3][0] = 2.0f * cameraJitter.x / static_cast<float>(settings().width);
+    shift[3][0] = -2.0f * cameraJitter.x / static_cast<float>(settings().width);
     shift[3][1] = 2.0f * cameraJitter.y / static_cast<float>(settings().height);
     view.projection = shift * view.projection;
     view.viewProjection = view.projection * view.view;
