@@ -11,8 +11,8 @@
 # the fields evaluated on the CPU and on the GPU (issue 16, point 7, scripts/results_fields.py) and
 # with the maps restarted or kept while they move (issue 17, point 3, scripts/results_history.py), and
 # the bunny at three scales with the map sizes and K fixed and chosen (issue 17, point 4,
-# scripts/results_auto.py), and the animated default candle before and after issue 17 (point 5,
-# scripts/results_animated.py, which builds the earlier commit once), and a 10 000-frame capture's
+# scripts/results_auto.py), and the animated default candle, the melting one (issues 17 and 35,
+# scripts/results_animated.py), and a 10 000-frame capture's
 # bytes, time and memory per frame (issue 37, point 6, scripts/results_soak.py), and the melting
 # candle measured on its meshes (issue 35, point 6, scripts/results_melt.py), and the clean picture
 # (issue 36: anti-aliasing, glare, dither; scripts/results_picture.py). Every
@@ -63,8 +63,8 @@ TALLOW="$tallow" python3 "$root/scripts/results_history.py" run "$work/history" 
 # Issue 17, point 4: the map and light G-buffer sizes chosen from the scene (auto) against the fixed
 # 512, the marble bunny at 0.01, 0.1 and 1 m.
 TALLOW="$tallow" python3 "$root/scripts/results_auto.py" run "$work/auto" ${quick:+--quick}
-# Issue 17, point 5: the animated default candle against the references at each frame's time, with
-# the build from before issue 17 (built once into $work/animated/before) and this one.
+# Issues 17 (point 5) and 35 (point 6): the animated default candle against the references at each
+# frame's time, restarted, with the defaults and with K = 16.
 TALLOW="$tallow" python3 "$root/scripts/results_animated.py" run "$work/animated" ${quick:+--quick}
 # Issue 37, point 6: a 10 000-frame capture's bytes written, time between frames and memory.
 TALLOW="$tallow" python3 "$root/scripts/results_soak.py" run "$work/soak" ${quick:+--quick}

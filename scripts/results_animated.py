@@ -1,19 +1,15 @@
 #!/usr/bin/env python3
-"""Issue 17, point 5: the animated candle (the default preset) before and after issue 17. The candle
-played from t0 at a fixed frame rate, every frame at a new time (the field and the flame's light
-move; the before build restarts the maps every frame, the after build's defaults keep each texel's
-history, sss.history), each frame against `tallow reference` at its own time: relative RMSE, the
-bias of the wax's upper and lower half, fireflies (and the reference's own), wall time per frame;
-then the new build again with N raised until a frame costs what the old build's did, for the error
-at equal wall time. The docs/RESULTS.md section they become.
+"""Issues 17 (point 5) and 35 (point 6): the animated default candle, the melting one, against
+references. The candle played from the preset's start at a fixed frame rate, every frame at a new time
+(the field, the pool, the drips and the flame's light move), each frame against `tallow reference` at its
+own time: relative RMSE, the bias of the wax's upper and lower half, fireflies (and the reference's own),
+wall time per frame, for the maps restarted at every frame (the paper's per-frame recompute,
+sss.history = 0), this build's defaults (each texel's history kept, sss.history) and K held at 16.
 
-"Before" is the build of BEFORE_COMMIT, the last commit before issue 17's first change (the
-paper's estimator per colour band, no second density for point lights, K = 16, 512² maps): the run
-step builds it in DIR/before (a git worktree and a build of the `tallow` target; minutes, and once:
-the build is kept) unless TALLOW_BEFORE names such a binary. Every frame of every row is measured
-the same way, by this build's `tallow compare --json` against the frame's reference.
+Issue 17's comparison with the build before it (8b53692) was measured on the candle before issue 35
+(docs/RESULTS.md as of commit 3316cae); that build cannot draw the melting candle, so it is not rerun.
 
-  results_animated.py run DIR [--quick]   references, builds and captures into DIR (TALLOW: this build's binary)
+  results_animated.py run DIR [--quick]   references and captures into DIR (TALLOW: this build's binary)
   results_animated.py report DIR MD       appends the section to MD
   results_animated.py splice DIR MD       replaces the section in MD (or adds it before the GPU section)
 
@@ -23,50 +19,39 @@ the compare JSON files.
 import json
 import os
 import statistics
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import results_sections  # noqa: E402
 from results_sections import fmt, pct  # noqa: E402
 
-HEADING = "## The animated candle before and after (issue 17, point 5)"
-BEFORE_COMMIT = "8b53692"
-PRESET, T0, FPS, FRAMES = "candle", 12.0, 8.0, 8
+HEADING = "## The animated candle (issues 17 and 35)"
+PRESET, FPS, FRAMES = "candle", 8.0, 8
 SIZE = "320x180"
 # The references' relative standard error: their own noise adds to every row's error in quadrature, so
-# it is kept well under the after rows' (4-5% against 2%-references on 2026-12-03).
+# it is kept well under the rows' (3-5%).
 REF_REL_ERROR = "0.01"
-SAMPLES = 8  # sss.samples, the default, of the first after rows
-FIREFLY_FACTOR = 4  # gpu::kFireflyFactor: a channel above 4× its 5×5 median
-# Rows: (name, binary "before"/"after", extra settings). The equal-time row is added by run().
-ROWS = (("before", "before", []),
-        ("after, K = 16", "after", ["sss.maps=16"]),
-        ("after, restart (sss.history = 0)", "after", ["sss.history=0"]),
-        ("after (defaults)", "after", []))
-
-
-def times(frames):
-    return [T0 + i / FPS for i in range(frames)]
+FIREFLY_FACTOR = 4  # gpu::kFireflyFactor: a channel above 4x its 5x5 median
+# Rows: (name, extra settings).
+ROWS = (("restart (sss.history = 0)", ["sss.history=0"]),
+        ("defaults", []),
+        ("K = 16", ["sss.maps=16"]))
+DEFAULTS = "defaults"
 
 
 def root():
     return os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def before_binary(work):
-    given = os.environ.get("TALLOW_BEFORE")
-    if given:
-        return given
-    src, build = os.path.join(work, "before", "src"), os.path.join(work, "before", "build")
-    binary = os.path.join(build, "tallow")
-    if os.path.exists(binary):
-        return binary
-    if not os.path.exists(src):
-        subprocess.run(["git", "-C", root(), "worktree", "add", "--detach", "-f", src, BEFORE_COMMIT], check=True)
-    env = dict(os.environ, TALLOW_BUILD_DIR=build, TALLOW_BUILD_TARGETS="tallow")
-    subprocess.run(["bash", os.path.join(src, "scripts", "build.sh")], check=True, env=env, stdout=subprocess.DEVNULL)
-    return binary
+def start_time():
+    """The preset's start (animation.start_s): where the window and scripts/run.sh show the candle."""
+    with open(os.path.join(root(), "presets", PRESET + ".json")) as f:
+        return float(json.load(f)["animation"]["start_s"])
+
+
+def times(frames):
+    t0 = start_time()
+    return [t0 + i / FPS for i in range(frames)]
 
 
 def row_dir(work, name):
@@ -74,9 +59,8 @@ def row_dir(work, name):
 
 
 def capture(binary, work, name, sets, size, frames):
-    """Captures a row; the before build, in its own worktree, is pointed at this checkout's data."""
     out = row_dir(work, name)
-    args = [binary, "capture", "--preset", PRESET, "--size", size, "--time", repr(T0), "--fps", repr(FPS),
+    args = [binary, "capture", "--preset", PRESET, "--size", size, "--time", repr(start_time()), "--fps", repr(FPS),
             "--frames", str(frames), "--set", "render.flame=false", "--exr-float", "--out", out]
     for s in sets:
         args += ["--set", s]
@@ -94,13 +78,6 @@ def compare_frames(binary, work, out, frames):
                                   result, quiet=True)
 
 
-def wall_per_frame(out):
-    with open(os.path.join(out, "stats.json")) as f:
-        frames = json.load(f)["frames"]
-    # The first frame also compiles and allocates; the others are what playing costs.
-    return statistics.median(f["wall_ms"] for f in frames[1:])
-
-
 def run(work, quick):
     os.makedirs(work, exist_ok=True)
     binary = os.environ.get("TALLOW", "tallow")
@@ -111,35 +88,9 @@ def run(work, quick):
         results_sections.run_once([binary, "reference", "--preset", PRESET, "--size", size, "--time", repr(t),
                                    *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref],
                                   ref, quiet=True)
-    before = before_binary(work)
-    walls = {}
-    for name, which, sets in ROWS:
-        out = capture(before if which == "before" else binary, work, name, sets, size, frames)
+    for name, sets in ROWS:
+        out = capture(binary, work, name, sets, size, frames)
         compare_frames(binary, work, out, frames)
-        walls[name] = wall_per_frame(out)
-    n, guess = equal_time_samples(binary, work, walls, size, frames)
-    name = "after, N = %d (equal time)" % n
-    out = capture(binary, work, name, ["sss.samples=%d" % n], size, frames)
-    compare_frames(binary, work, out, frames)
-    with open(os.path.join(work, "equal_time.json"), "w") as f:
-        json.dump({"name": name, "samples": n, "first_guess": guess}, f)
-
-
-def equal_time_samples(binary, work, walls, size, frames):
-    """N at which a frame with the defaults costs what a frame before did. The time per frame is about
-    a fixed part plus one proportional to N: a first guess scales N by the time ratio as if all of it
-    were proportional (too few samples, since the fixed part does not grow), then the line through the
-    defaults' time and the guess's gives N, rounded down so that the after row never has more time.
-    Returns (N, first guess)."""
-    base = walls["after (defaults)"]
-    guess = max(SAMPLES + 1, round(SAMPLES * walls["before"] / base))
-    probe = capture(binary, work, "equal time, first guess", ["sss.samples=%d" % guess], size, frames)
-    per_sample = (wall_per_frame(probe) - base) / (guess - SAMPLES)
-    if per_sample <= 0.0:
-        return guess, guess
-    return max(1, int(SAMPLES + (walls["before"] - base) / per_sample)), guess
-
-
 
 
 def load_row(work, name):
@@ -185,30 +136,25 @@ def add_extra_fireflies(stats, errors, add):
 
 
 def section(work):
-    with open(os.path.join(work, "equal_time.json")) as f:
-        equal = json.load(f)
-    names = [r[0] for r in ROWS] + [equal["name"]]
+    names = [r[0] for r in ROWS]
     rows = {name: load_row(work, name) for name in names}
     lines = []
     add = lines.append
     add(HEADING)
     add("")
-    stats0 = rows[names[1]][0]
-    add("The default preset, the candle, played from t₀ = %g s at %g frames per second for %d frames at %s, every"
-        % (T0, FPS, len(stats0["frames"]), "×".join(SIZE.split("x"))))
-    add("frame at a new time (the field and the flame's light move: the before build restarts the maps at every")
-    add("frame, the after build keeps each texel's history by default, `sss.history` = 8 rescaled on one diffusion")
-    add("length, `sss.history_rescale` = 1, and restarts them in the row with `sss.history = 0`), the flame")
-    add("itself not drawn (the reference has none); each frame against `tallow reference` at its own time (ε %s)."
-        % pct(float(REF_REL_ERROR)))
-    add("Before: the build of `%s`, the last commit before issue 17 (the paper's estimator per colour band, no"
-        % BEFORE_COMMIT)
-    add("second density for point lights, K = 16, 512² maps). After: this build, with K = 16 and with its")
-    add("defaults (`sss.maps=auto`, sizes `auto`, `sss.point_share` 0.25), then with N raised until a frame costs")
-    add("what a frame before did (equal wall time: a first guess N = %d scaled by the time ratio, then the N on the"
-        % equal["first_guess"])
-    add("line through the defaults' and the guess's time per frame, rounded down). Every frame is measured by this")
-    add("build's `tallow compare --json`.")
+    stats0 = rows[DEFAULTS][0]
+    add(results_sections.generated_line("results_animated.py", "`tallow capture` and `tallow reference`",
+                                        [rows[n][0] for n in names]))
+    add("")
+    t = times(len(stats0["frames"]))
+    add("The default preset, the melting candle (issue 35), played from its start, t = %g s, at %g frames per"
+        " second for %d frames (to %g s) at %s, every frame at a new time: the field, the pool, the drips and"
+        " the flickering flame's light move. The flame itself is not drawn (the reference has none); each frame"
+        " is measured against `tallow reference` at its own time (ε %s) by `tallow compare --json`. Rows: the"
+        " maps restarted at every frame (the paper's per-frame recompute, `sss.history = 0`), this build's"
+        " defaults (each texel's history kept, `sss.history` = 8 rescaled on one diffusion length; K from the"
+        " coverage, `sss.maps=auto`) and K held at 16." % (t[0], FPS, len(t), t[-1], "×".join(SIZE.split("x")),
+                                                         pct(float(REF_REL_ERROR))))
     add("Medians over the frames; the wall time leaves out the first frame (compiling, allocating). Device `%s`."
         % stats0.get("gl", {}).get("GL_RENDERER", "?"))
     add("Upper / lower: the mean over the upper or lower half of the wax's pixels against the reference's (the")
@@ -222,30 +168,26 @@ def section(work):
         med = lambda key: statistics.median(e[key] for e in errors if e.get(key) is not None)
         wall = statistics.median(f["wall_ms"] for f in stats["frames"][1:])
         k = statistics.median((f.get("sss") or {}).get("maps", 16) for f in stats["frames"])
-        n = stats.get("parameters", {}).get("sss.samples", SAMPLES)
+        n = stats.get("parameters", {}).get("sss.samples", "?")
         summary[name] = {"rel": med("rel_rmse"), "upper": med("upper_mean_ratio"), "lower": med("lower_mean_ratio"),
                          "ff": med("fireflies"), "rff": med("reference_fireflies"), "wall": wall}
         s = summary[name]
         add("| %s | %s | %g | %s | %s / %s | %g (%g) | %.0f |" % (name, n, k, pct(s["rel"]), fmt(s["upper"]),
                                                                  fmt(s["lower"]), s["ff"], s["rff"], s["wall"]))
     add("")
-    before, after, eq = summary["before"], summary["after (defaults)"], summary[equal["name"]]
-    add("- Lower-wall bias within 5%% of the reference: before %s, after %s (%s)." % (
-        fmt(before["lower"]), fmt(after["lower"]), "met" if abs(after["lower"] - 1.0) <= 0.05 else "not met"))
-    add("- No more fireflies than the reference's own: after %g against %g (%s)." % (
+    after, restart = summary[DEFAULTS], summary["restart (sss.history = 0)"]
+    add("- Lower-wall bias within 5%% of the reference (issue 17): %s with the defaults (%s)." % (
+        fmt(after["lower"]), "met" if abs(after["lower"] - 1.0) <= 0.05 else "not met"))
+    add("- No more fireflies than the reference's own: %g against %g with the defaults (%s)." % (
         after["ff"], after["rff"], "met" if after["ff"] <= after["rff"] else "not met"))
-    add_extra_fireflies(*rows["after (defaults)"], add)
-    restart = summary["after, restart (sss.history = 0)"]
+    add_extra_fireflies(*rows[DEFAULTS], add)
     add("- The maps kept while the candle melts (issue 17, point 3): relative RMSE %s with the defaults against %s"
         " restarting at every frame (%.2f×), lower wall %s against %s, at %.0f against %.0f ms a frame." % (
             pct(after["rel"]), pct(restart["rel"]), restart["rel"] / after["rel"], fmt(after["lower"]),
             fmt(restart["lower"]), after["wall"], restart["wall"]))
-    add("- With the defaults alone (N = %d): %s against %s before, %.2f× lower in %.0f%% of the wall time." % (
-        SAMPLES, pct(after["rel"]), pct(before["rel"]), before["rel"] / after["rel"], 100.0 * after["wall"] / before["wall"]))
-    ratio = before["rel"] / eq["rel"]
-    add("- At equal wall time (%.0f ms before, %.0f ms after with N = %d), relative RMSE %s before against %s after:"
-        " %.2f× lower (target 3×: %s)." % (before["wall"], eq["wall"], equal["samples"], pct(before["rel"]),
-                                           pct(eq["rel"]), ratio, "met" if ratio >= 3.0 - 1e-9 else "not met"))
+    add("- Issue 17's comparison with the build before it (`8b53692`, 3× lower error at equal wall time) was"
+        " measured on the candle before issue 35 (this section as of commit `3316cae`); that build cannot draw"
+        " the melting candle, so it is not rerun.")
     add("")
     add(results_sections.rerun("results_animated.py"))
     add("")

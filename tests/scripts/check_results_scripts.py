@@ -89,15 +89,15 @@ with tempfile.TemporaryDirectory() as tmp:
     assert "| candle | 128³ | gpu | 3 | 125.0 | 100.0 | 1.250 |" in text, text
     assert "cpu / gpu = 2.00; wall / GPU 2.500 → 1.250, within the bound of 1.3" in text, text
     assert "field.sample thread CPU 80.00 → 0.300 ms (bound 5 ms: under)" in text, text
-# Issue 17's animated-candle section: medians over the frames (wall: after the first), the K per
-# frame, and the three targets' verdicts from hand-made numbers.
+# Issues 17 and 35's animated-candle section: medians over the frames (wall: after the first), the K
+# per frame, and the verdicts from hand-made numbers.
 import results_animated  # noqa: E402
 
 with tempfile.TemporaryDirectory() as tmp:
     def row(name, samples, maps, walls, rels, lowers, fireflies, extra=()):
         d = results_animated.row_dir(tmp, name)
         os.makedirs(d)
-        frames = [{"time_s": 12 + i / 8, "wall_ms": w, "sss": {"maps": maps}} for i, w in enumerate(walls)]
+        frames = [{"time_s": 16 + i / 8, "wall_ms": w, "sss": {"maps": maps}} for i, w in enumerate(walls)]
         with open(os.path.join(d, "stats.json"), "w") as f:
             json.dump({"gl": {"GL_RENDERER": "llvmpipe (test)"}, "parameters": {"sss.samples": samples},
                        "frames": frames}, f)
@@ -113,41 +113,26 @@ with tempfile.TemporaryDirectory() as tmp:
                                  "over_reference": over}
     extra = [(1, feature(1.09, 3.86)), (2, feature(1.1, 3.95)),
              (2, {"x": 5, "y": 6, "channel": 0, "over_median": 9.0, "reference_over_median": 1.2, "over_reference": 7.5})]
-    row("before", 8, 16, [9000, 6000, 5000, 7000], [0.30, 0.31, 0.29, 0.30], [0.80, 0.82, 0.81, 0.80], [20, 21, 19, 22])
-    row("after, K = 16", 8, 16, [5000, 4000, 4000, 4000], [0.10, 0.10, 0.10, 0.10], [0.97] * 4, [0] * 4)
-    row("after, restart (sss.history = 0)", 8, 8, [5000, 1800, 1800, 1800], [0.18] * 4, [1.01] * 4, [0] * 4)
-    row("after (defaults)", 8, 8, [5000, 2000, 2000, 2000], [0.12, 0.12, 0.12, 0.12], [0.97] * 4, [0, 0, 5, 0], extra)
-    row("after, N = 24 (equal time)", 24, 8, [8000, 6000, 6000, 6000], [0.09, 0.11, 0.10, 0.10], [0.98] * 4, [0] * 4)
-    with open(os.path.join(tmp, "equal_time.json"), "w") as f:
-        json.dump({"name": "after, N = 24 (equal time)", "samples": 24, "first_guess": 20}, f)
+    row("K = 16", 8, 16, [5000, 4000, 4000, 4000], [0.10, 0.10, 0.10, 0.10], [0.97] * 4, [0] * 4)
+    row("restart (sss.history = 0)", 8, 8, [5000, 1800, 1800, 1800], [0.18] * 4, [1.01] * 4, [0] * 4)
+    row("defaults", 8, 8, [5000, 2000, 2100, 1900], [0.12, 0.11, 0.13, 0.12], [0.97, 0.96, 0.98, 0.97], [0, 0, 5, 1],
+        extra)
     text = "\n".join(results_animated.section(tmp))
-    assert "a first guess N = 20 scaled by the time ratio" in text, text
-    # before: rel 0.30, lower 0.805, fireflies 20.5, wall median of 6000, 5000, 7000 = 6000.
-    assert "| before | 8 | 16 | 30.0% | 1.000 / 0.805 | 20.5 (4) | 6000 |" in text, text
-    assert "| after (defaults) | 8 | 8 | 12.0% | 1.000 / 0.970 | 0 (4) | 2000 |" in text, text
-    assert "before 0.805, after 0.970 (met)" in text, text
-    assert "after 0 against 4 (met)" in text, text
+    # defaults: rel median of 0.11, 0.12, 0.12, 0.13 = 0.12; lower 0.97; fireflies median of 0, 0, 1, 5 = 0.5;
+    # wall median of 2000, 2100, 1900 = 2000 (the first frame left out).
+    assert "| defaults | 8 | 8 | 12.0% | 1.000 / 0.970 | 0.5 (4) | 2000 |" in text, text
+    assert "| K = 16 | 8 | 16 | 10.0% | 1.000 / 0.970 | 0 (4) | 4000 |" in text, text
+    assert "Lower-wall bias within 5% of the reference (issue 17): 0.970 with the defaults (met)." in text, text
+    assert "0.5 against 4 with the defaults (met)" in text, text
     assert ("relative RMSE 12.0% with the defaults against 18.0% restarting at every frame (1.50×), lower wall 0.970"
             " against 1.010, at 2000 against 1800 ms a frame") in text, text
+    assert "t = 16 s" in text and "for 4 frames (to 16.375 s)" in text, text
     # By pixel, the one seen in more frames first; ranges over its frames.
     assert ("  - defaults, pixel (181, 133), blue, frame(s) 1, 2 (K 8, 8): 1.09–1.10× the reference there; the"
             " reference's own ratio to its 5×5 median there 3.86–3.95 (a firefly above 4).") in text, text
     assert ("  - defaults, pixel (5, 6), red, frame(s) 2 (K 8): 7.50× the reference there; the reference's own ratio"
             " to its 5×5 median there 1.20 (a firefly above 4).") in text, text
-    assert text.index("pixel (181, 133)") < text.index("pixel (5, 6)") < text.index("At equal wall time"), text
-    assert "relative RMSE 30.0% before against 10.0% after: 3.00× lower (target 3×: met)" in text, text
-    assert "With the defaults alone (N = 8): 12.0% against 30.0% before, 2.50× lower in 33% of the wall time." in text, text
-# The equal-time N: guess round(8 × 6000 / 2000) = 24; its frames at 5200 ms give 200 ms per sample
-# over the defaults' 2000 ms at N = 8, so 6000 ms is reached at N = 8 + 4000 / 200 = 28.
-captured = []
-results_animated.capture = lambda binary, work, name, sets, size, frames: captured.append(sets) or name
-results_animated.wall_per_frame = lambda out: 5200.0
-assert results_animated.equal_time_samples("tallow", "/nowhere", {"before": 6000.0, "after (defaults)": 2000.0},
-                                           "8x8", 2) == (28, 24)
-assert captured == [["sss.samples=24"]], captured
-# Rounded down: 6100 ms would be N = 28.5, and 28 keeps the after row at or under the before row's time.
-assert results_animated.equal_time_samples("tallow", "/nowhere", {"before": 6100.0, "after (defaults)": 2000.0},
-                                           "8x8", 2)[0] == 28
+    assert text.index("pixel (181, 133)") < text.index("pixel (5, 6)") < text.index("The maps kept"), text
 # Issue 17, point 3's verdict: wins counted per sss.history_rescale against the restart of the same
 # preset, rate and N (hand-made rows), and the defaults' rows (8 frames, move 0.5, N = 8, rescale 1)
 # judged on their own: they must win in most animations.
