@@ -480,8 +480,11 @@ TEST(RadiosityMaps, AFootprintReachingASurfaceNearerTheMapIsNotAveragedOver) {
   // have footprints reaching onto the body, nearer the map, whose B a filtered look-up would average
   // in: Algorithm 1 tests the footprint's corners against the map's depth and takes such look-ups from
   // level-0 texels (shaders/maps/algorithm1.glsl). The rim's first frame read 1.375 when no tap was
-  // tested, 1.281 with the four taps around x_o tested, 1.140 with the footprint's corners too. What the mip filter still averages on one surface, the F^(-1/4)
-  // narrowing of the footprint takes away as frames accumulate (1.140 -> 1.113 after 16 frames here;
+  // tested, 1.281 with the four taps around x_o tested, 1.140 with the footprint's corners too. Those
+  // texels are each tested within ε_bias of x_o's depth (nearer and farther surfaces left out; the
+  // taps' filtered look-ups had averaged them in): 1.144 after 1 frame, 1.082 after 16 (1.113 with
+  // the filtered taps, 1.124 testing only the nearer side). What the mip filter still averages on one surface, the F^(-1/4)
+  // narrowing of the footprint takes away as frames accumulate (1.144 -> 1.082 after 16 frames here;
   // a backlit sphere's rim, where no look-up is an edge, reads 1.05 from the first frame: the cap at
   // half a diffusion length already bounds the footprint there).
   // Every frame at the pixel centres (render.aa=1): the per-pixel gather is the truth at each centre.
@@ -492,7 +495,7 @@ TEST(RadiosityMaps, AFootprintReachingASurfaceNearerTheMapIsNotAveragedOver) {
   ASSERT_GE(r.pixels, 40u) << "the backlit rim should span some pixels";
   EXPECT_LT(r.first, 1.2) << "the first frame's footprints should not average the body's B into the rim";
   EXPECT_LT(r.accumulated, r.first + 0.02) << "accumulating should not raise the rim";
-  EXPECT_LT(std::abs(r.accumulated - 1.0), 0.15);
+  EXPECT_LT(std::abs(r.accumulated - 1.0), 0.10) << "the edge look-ups should take only texels of x_o's surface";
 }
 
 void expectFiniteMaps(PresetSession& s, const std::string& what) {

@@ -40,6 +40,23 @@ void countVplCoverage(int firstMap) {
   if (uCountVplCoverage != 0) countInto(COVERAGE_VPLS, firstMap);
 }
 
+// The level-0 texels of map k around the point at texture coordinates p (its bilinear 2×2) whose
+// surface lies within ε_bias of x_o's depth (z, zFar: x_o's depth ∓ ε_bias), each by its bilinear
+// weight: a bilinear look-up would average in the texels of a nearer surface that hides x_o from the
+// map (the drip overhanging the puddle) or of a farther one beyond x_o's silhouette.
+vec4 texelsSeeing(vec2 p, int k, float z, float zFar) {
+  vec2 size = vec2(textureSize(uMaps, 0).xy);
+  vec2 f = p * size - 0.5;
+  vec2 w = fract(f);
+  // The corner the 2×2 share, so that the gathers take the same texels as the weights.
+  vec3 corner = vec3((floor(f) + 1.0) / size, float(k));
+  // textureGather's order: (0, 1), (1, 1), (1, 0), (0, 0) of the 2×2.
+  vec4 weight = vec4((1.0 - w.x) * w.y, w.x * w.y, w.x * (1.0 - w.y), (1.0 - w.x) * (1.0 - w.y)) *
+                textureGather(uMapDepth, corner, z) * (1.0 - textureGather(uMapDepth, corner, zFar));
+  return vec4(dot(weight, textureGather(uMaps, corner, 0)), dot(weight, textureGather(uMaps, corner, 1)),
+              dot(weight, textureGather(uMaps, corner, 2)), dot(weight, textureGather(uMaps, corner, 3)));
+}
+
 // dpdx, dpdy: screen-space derivatives of x_o, taken by the caller in uniform control flow (they
 // are undefined inside this loop once some fragments skip a map); the mip level then follows the
 // pixel's footprint on each map. seenBy: Σ of the weights of the maps that see x_o; firstMap: the
@@ -63,6 +80,7 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
       dy *= uMaxFootprint / footprint;
     }
     float z = t.z - uEpsBias * mapViews[k].depthScale.x;
+    float zFar = t.z + uEpsBias * mapViews[k].depthScale.x;
     vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
     vec2 taps[4] = vec2[4](t.xy + vec2(-texel.x, -texel.y), t.xy + vec2(texel.x, -texel.y),
                            t.xy + vec2(-texel.x, texel.y), t.xy + vec2(texel.x, texel.y));
@@ -94,10 +112,12 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     // above past the candle's top), a filtered look-up would mix in the texels of the surface in
     // front, whose B can be many times x_o's: bright and dark single pixels along the edge (issue
     // 36: 5 dark dots on the default candle's puddle, 2 without the mix). There B is taken from the
-    // level-0 texels of the taps that see x_o only.
+    // level-0 texels of x_o's surface only, each tested on its own (texelsSeeing): the taps' bilinear
+    // look-ups, weighted by their filtered depth tests, still averaged in the texels of the drip
+    // overhanging the puddle (a red pixel 8.9x the reference's at t = 16 s, 160x90).
     vec4 m = vec4(0.0);
     if (edge)
-      for (int i = 0; i < 4; ++i) m += seen[i] * textureLod(uMaps, vec3(taps[i], float(k)), 0.0);
+      for (int i = 0; i < 4; ++i) m += texelsSeeing(taps[i], k, z, zFar);
     else
       m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
     if (m.a <= 0.0) continue;
