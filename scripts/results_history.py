@@ -70,7 +70,9 @@ def run(work, quick):
     for preset, t0, fps, variants in ANIMATIONS:
         tk = times(t0, fps, frames)[-1]
         ref = reference_path(work, preset, fps)
+        # render.flame=false as in the captures (the reference would add the flame's reflection on the pool).
         results_sections.run_once([binary, "reference", "--preset", preset, "--size", size, "--time", repr(tk),
+              "--set", "render.flame=false",
               *(["--spp", "2"] if quick else ["--rel-error", REF_REL_ERROR]), "--out", ref], ref, quiet=True)
         for history, move, samples, rescale in (variants[:3] if quick else variants):
             out = run_dir(work, preset, fps, history, move, samples, rescale)
