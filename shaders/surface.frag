@@ -47,6 +47,9 @@ uniform vec3 uFlameBase[MAX_FLAMES];
 uniform vec3 uFlameUp[MAX_FLAMES];
 uniform vec3 uFlameSway[MAX_FLAMES];
 uniform vec3 uFlameSize[MAX_FLAMES];  // height, widest half-width, radiance per unit of flameProfile
+// Each flame's point light (index into common/lights.glsl's point lights, −1: none): the mirror shows
+// the flame only where its light's shadow map sees x_o (the pool, not the puddle behind the wax).
+uniform int uFlamePointLight[MAX_FLAMES];
 
 layout(location = 0) out vec4 oRadiance;
 layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, g: some map sees it, b: opaque
@@ -90,9 +93,12 @@ void main() {
     float cosO = clamp(dot(facing, v), 0.0, 1.0);
     vec3 mirror = reflect(-v, facing);
     vec3 mirrored = uEnvironment != 0 ? environmentRadiance(mirror) : uAmbient;
-    for (int f = 0; f < uFlameCount; ++f)
-      mirrored += uFlameSize[f].z * flameSeenAlong(vWorldPosition, mirror, uFlameBase[f], uFlameUp[f], uFlameSize[f].x,
-                                                   uFlameSize[f].y, uFlameSway[f]);
+    for (int f = 0; f < uFlameCount; ++f) {
+      vec3 seen = flameSeenAlong(vWorldPosition, mirror, uFlameBase[f], uFlameUp[f], uFlameSize[f].x, uFlameSize[f].y,
+                                 uFlameSway[f]);
+      if (seen != vec3(0.0) && uFlamePointLight[f] >= 0) seen *= pointVisibility(uFlamePointLight[f], vWorldPosition, facing);
+      mirrored += uFlameSize[f].z * seen;
+    }
     vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, eta) * mirrored : vec3(0.0);
     oRadiance = vec4(fresnelTransmittance(cosO, eta) / PI * b + specular, 1.0);
     oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);

@@ -25,7 +25,8 @@ const SceneObject* followedCandle(const Scene& scene, const Light& light) {
 std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const RenderSettings& settings) {
   std::vector<FlameSheet> out;
   if (!settings.flame) return out;
-  for (const Light& light : scene.lights) {
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
     if (!followedCandle(scene, light)) continue;
     const FollowedFlame f = followedFlame(scene, light, timeS);
     const glm::vec3 axis(f.model * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
@@ -36,6 +37,7 @@ std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const Rend
     s.halfWidth = static_cast<float>(f.flame.halfWidth) * f.scale;
     s.sway = glm::vec3(f.model * glm::vec4(glm::vec3(f.flame.sway), 0.0f));
     s.radianceScale = static_cast<float>(f.radianceScale(light) * std::exp2(settings.flameExposureEv));
+    s.light = static_cast<int>(i);
     out.push_back(s);
   }
   return out;
@@ -46,14 +48,19 @@ glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const
                                   double(s.halfWidth), glm::dvec3(s.sway));
 }
 
-void setFlameMirrorUniforms(gpu::Program& p, const std::vector<FlameSheet>& flames) {
+void setFlameMirrorUniforms(gpu::Program& p, const Scene& scene, const std::vector<FlameSheet>& flames) {
   constexpr std::size_t kMaxFlames = 8;  // surface.frag MAX_FLAMES
   std::vector<glm::vec3> base, up, sway, size;
+  std::vector<int> pointLight;
   for (std::size_t i = 0; i < flames.size() && i < kMaxFlames; ++i) {
     base.push_back(flames[i].base);
     up.push_back(flames[i].up);
     sway.push_back(flames[i].sway);
     size.emplace_back(flames[i].height, flames[i].halfWidth, flames[i].radianceScale);
+    // The flame's light among the point lights, as setLightUniforms numbers them (scene order).
+    int index = 0;
+    for (int l = 0; l < flames[i].light; ++l) index += scene.lights[static_cast<std::size_t>(l)].kind == LightKind::Point;
+    pointLight.push_back(flames[i].light >= 0 ? index : -1);
   }
   const int count = static_cast<int>(base.size());
   p.set("uFlameCount", count);
@@ -62,6 +69,7 @@ void setFlameMirrorUniforms(gpu::Program& p, const std::vector<FlameSheet>& flam
   p.set("uFlameUp", up.data(), count);
   p.set("uFlameSway", sway.data(), count);
   p.set("uFlameSize", size.data(), count);
+  glProgramUniform1iv(p.id(), p.location("uFlamePointLight"), count, pointLight.data());
 }
 
 int flameCount(const FrameState& state) {

@@ -28,6 +28,9 @@ int flameCount(const FrameState& state);
 struct FlameSheet {
   glm::vec3 base{0.0f}, up{0.0f, 1.0f, 0.0f}, sway{0.0f};
   float height = 0.0f, halfWidth = 0.0f, radianceScale = 0.0f;
+  /// The point light the flame is (its index in Scene::lights): a mirror sees the flame only where
+  /// that light reaches, so that the puddle at the foot does not reflect it through the wax.
+  int light = -1;
 };
 
 /// The flames of `scene` (as sceneAtTime placed its lights) at t, as drawn; empty when render.flame
@@ -39,8 +42,9 @@ std::vector<FlameSheet> flameSheets(const Scene& scene, double timeS, const Rend
 /// translucent surface, the pool's above all).
 glm::dvec3 flameSeenAlong(const glm::dvec3& origin, const glm::dvec3& dir, const FlameSheet& sheet);
 
-/// surface.frag's flame uniforms (uFlameCount and the sheets, at most its MAX_FLAMES = 8).
-void setFlameMirrorUniforms(gpu::Program& program, const std::vector<FlameSheet>& flames);
+/// surface.frag's flame uniforms (uFlameCount, the sheets and their point lights' indices, at most
+/// its MAX_FLAMES = 8).
+void setFlameMirrorUniforms(gpu::Program& program, const Scene& scene, const std::vector<FlameSheet>& flames);
 
 class FlamePass final : public FramePass {
  public:

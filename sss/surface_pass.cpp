@@ -51,7 +51,7 @@ void SurfacePass::render(const FrameContext& context) {
   if (shading != SurfaceShading::None) {
     slots = translucentSlotTable(scene);
     setSlotUniforms(p, slots, false);
-    setFlameMirrorUniforms(p, flameSheets(scene, context.state.timeS, settings));
+    setFlameMirrorUniforms(p, scene, flameSheets(scene, context.state.timeS, settings));
   }
   p.set("uTranslucentMethod", static_cast<int>(shading));
   GLuint unit = kFirstMethodUnit;

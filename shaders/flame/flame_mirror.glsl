@@ -5,8 +5,10 @@
 // reflected ray meets the sheet the flame would turn toward its origin: the plane through the axis
 // facing `origin`, at height v = (p − base)·up / height, across x = (p − base − v² sway)·side in
 // half-widths. Returns flameProfile there (0 where the ray misses it, runs away from it or starts on
-// the axis); the caller scales it to the drawn flame's radiance. No occlusion test: the pool and the
-// cup's inside see the flame, and a ray from outside the cup runs away from the sheet.
+// the axis); the caller scales it to the drawn flame's radiance. No occlusion test here: the callers
+// weight it by whether the flame's light reaches the origin (surface.frag: that light's shadow map;
+// the reference: a shadow ray), since a ray from the puddle at the candle's foot meets the sheet
+// through the wax (two orange dots on the default picture's puddle, issue 36).
 #ifdef TALLOW_GLSL
 #include "flame/flame_profile.glsl"
 #endif

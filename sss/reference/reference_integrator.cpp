@@ -556,8 +556,16 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     if (render.specular) {
       const glm::dvec3 mirror = glm::reflect(dir, n);
       glm::dvec3 mirrored = environment ? environment->radiance(mirror) : glm::dvec3(scene.ambient);
-      for (const FlameSheet& f : flames)  // surface.frag's flame reflection
-        mirrored += double(f.radianceScale) * flameSeenAlong(xw, mirror, f);
+      for (const FlameSheet& f : flames) {  // surface.frag's flame reflection, where the flame's light reaches
+        const glm::dvec3 seen = flameSeenAlong(xw, mirror, f);
+        if (seen == glm::dvec3(0.0)) continue;
+        if (f.light >= 0 && render.shadows) {
+          const Light& l = scene.lights[static_cast<std::size_t>(f.light)];
+          const Incident in = incident(l, xw);
+          if (l.castsShadows && rays.occluded(xw + offset * n, in.toLight, in.distance - 2.0 * offset)) continue;
+        }
+        mirrored += double(f.radianceScale) * seen;
+      }
       px.base = fresnelReflectance(cosO, px.material->eta) * mirrored;
     }
   };
