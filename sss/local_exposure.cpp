@@ -24,7 +24,8 @@ int LocalExposure::cellFor(int width, int height) {
 std::size_t LocalExposure::bytesFor(int width, int height) {
   const int s = cellFor(width, height);
   return 2 * gpu::Texture::bytesFor(GL_TEXTURE_3D, GL_RG32F, cells(width, s), cells(height, s), kBins, 1) +
-         gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, 1);
+         gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, 1) +
+         gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_R32F, width, height, 1, 1);
 }
 
 void LocalExposure::apply(const gpu::Texture& picture, float strength, float exposureScale) {
@@ -39,6 +40,8 @@ void LocalExposure::apply(const gpu::Texture& picture, float strength, float exp
     }
     output_ = gpu::Texture::create2D(GL_RGBA32F, w, h);
     output_.setFilter(GL_NEAREST, GL_NEAREST);
+    gain_ = gpu::Texture::create2D(GL_R32F, w, h);
+    gain_.setFilter(GL_NEAREST, GL_NEAREST);
   }
   // The camera pass (the still's average, the glare) wrote the picture; the steps below read it.
   glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -58,12 +61,19 @@ void LocalExposure::apply(const gpu::Texture& picture, float strength, float exp
     glDispatchCompute(groups(gw), groups(gh), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
+  // Step 4 slices grid 1 into each pixel's gain; step 5 applies the gains, blended on edges.
+  program_.set("uGain", 2);
   program_.set("uStep", 4);
   grid_[1].bind(1);
+  glBindImageTexture(2, gain_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  glDispatchCompute(groups(w), groups(h), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  program_.set("uStep", 5);
+  gain_.bind(2);
   glBindImageTexture(1, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute(groups(w), groups(h), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-  gpu::unbindComputeState(2, 2);
+  gpu::unbindComputeState(3, 3);
 }
 
 }  // namespace tallow::sss

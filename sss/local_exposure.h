@@ -4,7 +4,8 @@
 // layer (Durand and Dorsey 2002), computed on a bilateral grid (Chen, Paris and Durand 2007), is
 // lifted toward mid grey by a share s of its distance below it: a region s·d stops under mid grey
 // before is (1 − s)·d under it after; above mid grey nothing changes, so highlights do not clip
-// more, and within a region the detail (the picture's ratios to its base) is kept. Like the glare
+// more, and within a region the detail (the picture's ratios to its base) is kept; a pixel blended
+// from both sides of an edge is shown as the blend of what the two sides show. Like the glare
 // it changes what is shown — the window, PNGs, videos — not the radiance in the EXR
 // (docs/presets.md, Local exposure).
 #include <cstddef>
@@ -24,18 +25,18 @@ class LocalExposure {
   /// Pixels per grid cell along x and y for a width × height picture: σ_s, 2% of its larger side
   /// (Durand and Dorsey 2002, §5.2), at least 2.
   static int cellFor(int width, int height);
-  /// GPU memory apply() allocates for a width × height picture (two grids and the output).
+  /// GPU memory apply() allocates for a width × height picture (two grids, the gains and the output).
   static std::size_t bytesFor(int width, int height);
   /// The picture `picture` (linear) with its base layer's shadows lifted by the share `strength` ∈
   /// (0, 1] toward mid grey at the exposure scale `exposureScale`, into output() (allocated on the
   /// first call and at a new size).
   void apply(const gpu::Texture& picture, float strength, float exposureScale);
   const gpu::Texture& output() const { return output_; }
-  std::size_t bytes() const { return grid_[0].bytes() + grid_[1].bytes() + output_.bytes(); }
+  std::size_t bytes() const { return grid_[0].bytes() + grid_[1].bytes() + output_.bytes() + gain_.bytes(); }
 
  private:
   gpu::Program program_;
-  gpu::Texture grid_[2], output_;
+  gpu::Texture grid_[2], output_, gain_;
 };
 
 }  // namespace tallow::sss

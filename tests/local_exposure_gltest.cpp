@@ -4,7 +4,8 @@
 // unchanged, bit for bit; next to a 10-stop edge the dark side is lifted as its interior (the
 // bilateral grid keeps the bright side out of the dark side's base: no halo), where a base without
 // the range axis would lift it less; within a region, local contrast is kept far better than a global
-// curve of the same strength would keep it. Then the default candle: the table's glow shown.
+// curve of the same strength would keep it; a pixel blended from both sides of an edge shows the blend
+// of what the sides show.
 #include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
@@ -105,6 +106,45 @@ TEST_F(LocalExposureGL, KeepsLocalContrastWithinARegion) {
   EXPECT_NEAR(meanLift, s * 8.0, 0.1) << "the region's base is its mean log luminance";
   EXPECT_GT(worst, 0.85) << "detail within a region is kept (a global curve would leave 1 - s)";
   EXPECT_LE(best, 1.0 + 1e-4) << "local contrast is never exaggerated";
+}
+
+TEST_F(LocalExposureGL, AnAntiAliasedEdgeShowsTheBlendOfWhatItsTwoSidesShow) {
+  // The bright orange left (above mid grey: not lifted), 10 stops darker right (lifted), and between
+  // them one column of pixels blended as a still's box filter blends an edge, a share α of the bright
+  // side (α from 1/16 to 15/16 down the rows). Shown, such a pixel should be the same blend of what
+  // the two sides show: α Y_bright + (1 − α) Y_dark g_dark, g_dark the dark side's gain. Sliced at its
+  // own luminance the blend was lifted as neither side (the candle's rim: a dark outline between the
+  // wax and the lifted table).
+  const glm::vec4 bright(1.2f, 0.6f, 0.2f, 1.0f), dark = bright * std::exp2(-10.0f);
+  std::vector<glm::vec4> pixels(static_cast<std::size_t>(kW) * kH);
+  const int edge = kW / 2;
+  auto share = [](int y) { return ((y % 15) + 1) / 16.0f; };
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      glm::vec4 c = x < edge ? bright : x > edge ? dark : share(y) * bright + (1.0f - share(y)) * dark;
+      c.a = 1.0f;
+      pixels[static_cast<std::size_t>(y) * kW + x] = c;
+    }
+  const float s = 0.6f, e = 0.5f;
+  const gpu::Image after = adapted(pixels, s, e);
+  const double gainDark = std::exp2(s * (kGreyStops - std::log2(e * luminance(dark))));
+  double worst = 0.0;
+  int outside = 0;
+  for (int y = 8; y < kH - 8; ++y) {
+    const double a = share(y);
+    const double expected = a * luminance(bright) + (1.0 - a) * luminance(dark) * gainDark;
+    // readTexture's rows run top-down; the upload's row 0 is the texture's bottom.
+    const auto shownAt = [&](int x) { return luminance(after.at(x, kH - 1 - y)); };
+    const double shown = shownAt(edge);
+    worst = std::max(worst, std::abs(shown / expected - 1.0));
+    // Never outside what its two sides show.
+    const double left = shownAt(edge - 1), right = shownAt(edge + 1);
+    outside += shown < std::min(left, right) * (1.0 - 1e-4) || shown > std::max(left, right) * (1.0 + 1e-4);
+  }
+  std::printf("[ local   ] an anti-aliased edge, 10 stops, s %.1f: the blended column within %.4f of the blend of its "
+              "two sides as shown; %d pixels outside them\n", s, worst, outside);
+  EXPECT_LT(worst, 0.01) << "a blended pixel shows the blend of what its two sides show";
+  EXPECT_EQ(outside, 0) << "no outline darker or brighter than both sides";
 }
 
 }  // namespace

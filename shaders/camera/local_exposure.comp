@@ -12,13 +12,27 @@
 //           two nearest range bins of uGridOut (rg: Σ w·log₂Y, Σ w);
 //  uStep 1-3: the grid blurred by [1 4 6 4 1]/16 along x, y, then range (uGrid → uGridOut; zero
 //           outside the grid, so cells at the border keep their own normalisation);
-//  uStep 4: the slice: base b at the pixel; the picture times 2^(s · max(0, log₂ g − b)) into uOutput.
+//  uStep 4: the slice: base b at the pixel; its gain 2^(s · max(0, log₂ g − b)) into uGainOut;
+//  uStep 5: the picture times each pixel's gain, made consistent with its neighbours' (below) into
+//           uOutput.
+// Step 5: a pixel on an anti-aliased edge is a blend, Y = α Y_hi + (1 − α) Y_lo, of the two sides
+// around it. Sliced at its own, in-between luminance, its base is neither side's (the grid's bins
+// there hold little but the bright side, blurred across range), so it was lifted less than the dark
+// side and more than the bright one: the wax's silhouette against the lifted table showed as a dark
+// outline, darker than both (issue 36: the rim's dotted outline). The picture shown should be the
+// same blend of what each side shows, α Y_hi g_hi + (1 − α) Y_lo g_lo: with Y_lo, Y_hi the darkest
+// and brightest of the 3 × 3 pixels around it (the still's box filter blends a pixel only with what
+// its own square holds, so the pure sides are its neighbours) and g their gains, α from Y. A pixel
+// that is the darkest or brightest of its 3 × 3 keeps its own gain (uniform regions, detail,
+// a sharp edge's two sides).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(rg32f, binding = 0) uniform writeonly image3D uGridOut;   // steps 0-3
-layout(rgba32f, binding = 1) uniform writeonly image2D uOutput;  // step 4: the picture shown
-uniform sampler2D uPicture;  // the picture, linear (steps 0 and 4)
+layout(rgba32f, binding = 1) uniform writeonly image2D uOutput;  // step 5: the picture shown
+layout(r32f, binding = 2) uniform writeonly image2D uGainOut;    // step 4: each pixel's gain
+uniform sampler2D uPicture;  // the picture, linear (steps 0, 4 and 5)
 uniform sampler3D uGrid;     // steps 1-4: the grid (step 4: the blurred grid, filtered linearly)
+uniform sampler2D uGain;     // step 5: the gains of step 4
 uniform int uStep;
 uniform int uCell;            // S, pixels per grid cell along x and y
 uniform float uExposureScale; // e = 2^render.exposure_ev: luminance as the tone map sees it
@@ -85,7 +99,30 @@ void slice() {
   vec2 g = texture(uGrid, at).rg;
   float base = g.y > 1e-6 ? g.x / g.y : stops;
   float lift = uStrength * max(0.0, kGreyStops - base);
-  imageStore(uOutput, p, vec4(picture.rgb * exp2(lift), picture.a));
+  imageStore(uGainOut, p, vec4(exp2(lift), 0.0, 0.0, 0.0));
+}
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+void blendConsistently() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = textureSize(uPicture, 0);
+  if (any(greaterThanEqual(p, size))) return;
+  vec4 picture = texelFetch(uPicture, p, 0);
+  float y = luminance(picture.rgb), gain = texelFetch(uGain, p, 0).r;
+  float lo = y, hi = y, gainLo = gain, gainHi = gain;
+  for (int j = -1; j <= 1; ++j)
+    for (int i = -1; i <= 1; ++i) {
+      ivec2 q = clamp(p + ivec2(i, j), ivec2(0), size - 1);
+      float yq = luminance(texelFetch(uPicture, q, 0).rgb);
+      if (yq < lo) lo = yq, gainLo = texelFetch(uGain, q, 0).r;
+      if (yq > hi) hi = yq, gainHi = texelFetch(uGain, q, 0).r;
+    }
+  if (y > lo && y < hi) {
+    float alpha = (y - lo) / (hi - lo);
+    gain = (alpha * hi * gainHi + (1.0 - alpha) * lo * gainLo) / y;
+  }
+  imageStore(uOutput, p, vec4(picture.rgb * gain, picture.a));
 }
 
 void main() {
@@ -93,5 +130,6 @@ void main() {
   else if (uStep == 1) blur(ivec3(1, 0, 0));
   else if (uStep == 2) blur(ivec3(0, 1, 0));
   else if (uStep == 3) blur(ivec3(0, 0, 1));
-  else slice();
+  else if (uStep == 4) slice();
+  else blendConsistently();
 }
