@@ -113,6 +113,8 @@ def section(work):
                        r"most ([\d.e+-]+)")
     texture = printed(gl, r"checkerboard 8 stops down, s ([\d.]+): lifted ([\d.]+) stops on average, neighbours "
                           r"([\d.]+) to ([\d.]+) stops apart after \(a global curve of that strength: ([\d.]+)\)")
+    edge = printed(gl, r"an anti-aliased edge, 10 stops, s ([\d.]+): the blended column within ([\d.]+) of the blend "
+                       r"of its two sides as shown; (\d+) pixels outside them")
     picture = printed(gl, r"default candle (\d+)x(\d+): (\d+) wax pixels, (\d+) lit: median hue ([\d.]+) deg, value "
                           r"([\d.]+), (\d+) white; (\d+) dark dots; the table under it: brightest tenth from ([\d.]+) "
                           r"\((\d+) pixels\)")
@@ -166,10 +168,12 @@ def section(work):
                  "or more within 3 px of a 10-stop edge (no halo: the bright side's base is kept out), the bright "
                  "side unchanged (at most %s); a 1-stop checkerboard 8 stops down is lifted %s stops on average "
                  "(expected s x 8 = %s) and neighbours stay %s to %s stops apart (a global curve of that strength "
-                 "would leave %s)."
+                 "would leave %s); a column blended from both sides of a 10-stop edge, as the still's anti-aliasing "
+                 "blends the wax's silhouette with the table, shows the blend of what its two sides show within %s "
+                 "(relative), %d of its pixels darker or brighter than both sides."
                  % (fmt(lift[1], 3), fmt(lift[2], 4), fmt(lift[0], 2), "%.1e" % lift[3], fmt(lift[4], 4),
                     "%.1e" % lift[5], fmt(texture[1], 3), fmt(8 * texture[0], 3), fmt(texture[2], 3),
-                    fmt(texture[3], 3), fmt(texture[4], 2)))
+                    fmt(texture[3], 3), fmt(texture[4], 2), fmt(edge[1], 4), edge[2]))
     lines.append("")
     lines.append("**The default PNG** (%dx%d, tests/default_picture_gltest.cpp): of %d wax pixels %d are lit, their "
                  "median hue %s° (issue 36: 22–38°), value %s, %d white; %d dark single-pixel dots on the wax (bound "
