@@ -742,5 +742,29 @@ TEST(MapHistory, TheKeptHistoryFollowsALightThatTurnsWhileTheSurfaceHolds) {
   }
 }
 
+TEST(MapHistory, TheKeptHistoryFollowsALightWhoseBrightnessChanges) {
+  // A candle's flame flickers: its light's flux changes every frame. The slab lit from above for 4
+  // frames, then at 0.9 of the irradiance: no surface point moves, so every texel keeps its history
+  // (a restart on the intensity kept the melting candle's maps at 1 frame, the history never used),
+  // and the history is rescaled to the new light: the maps' total within 3% of a restart's at 0.9.
+  const std::vector<std::string> sets = {"render.width=48", "render.height=32", "sss.maps=4", "sss.samples=8",
+                                         "sss.map_size=64", "sss.light_map_size=64", "vpl.count=0",
+                                         "sss.history=8"};
+  PresetSession restart("slab", sets);
+  restart.scene().lights[0].intensity *= 0.9f;
+  for (int f = 0; f < 4; ++f) restart.render(0.0);
+  const glm::dvec3 expected = mapMeanTotal(restart);
+  PresetSession s("slab", sets);
+  for (int f = 0; f < 4; ++f) s.render(0.0);
+  s.scene().lights[0].intensity *= 0.9f;
+  s.render(0.0);
+  EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 5) << "a light that dims is not a restart with sss.history";
+  const glm::dvec3 after = mapMeanTotal(s);
+  for (int c = 0; c < 3; ++c) {
+    std::printf("[ history ] slab, light at 0.9, band %d: after / restart %.4f\n", c, after[c] / expected[c]);
+    EXPECT_NEAR(after[c] / expected[c], 1.0, 0.03) << "rescaled to the dimmer light";
+  }
+}
+
 }  // namespace
 }  // namespace tallow

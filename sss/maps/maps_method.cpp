@@ -81,13 +81,17 @@ bool RadiosityMapsPass::runsAgain(const FrameState& state) const { return frames
 
 void RadiosityMapsPass::run(FrameContext& context, bool changed) {
   // What may change without a restart when sss.history > 0: the geometry and the light G-buffers
-  // (resources, not inputs), the time and where the lights are (a candle's flame moves with it).
+  // (resources, not inputs), the time, where the lights are (a candle's flame moves with it) and how
+  // bright they are (the flame's flicker changes its light's flux every frame: restarting on it kept
+  // the melting candle's maps at one frame, its history never used); the kept history is rescaled to
+  // the new light (sss.history_rescale), as for a light that moves.
   // Any other input (materials, K, the estimator's settings, a bench's restart) restarts the maps,
   // and so does Renderer::invalidate (as if nothing had run); so does a change of sss.history or
   // sss.history_move themselves, like any setting of the maps.
   Fingerprint key;
   for (const std::string& name : io(context.state).reads)
-    if (isInput(name) && name != "time" && name != "scene.light_placement") key << inputFingerprint(name, context.state);
+    if (isInput(name) && name != "time" && name != "scene.light_placement" && name != "scene.light_intensity")
+      key << inputFingerprint(name, context.state);
   const bool sameSettings = key.value() == restartKey_;
   restartKey_ = key.value();
   MapsUpdate update = MapsUpdate::Accumulate;
