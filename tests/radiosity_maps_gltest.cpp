@@ -481,10 +481,11 @@ TEST(RadiosityMaps, AFootprintReachingASurfaceNearerTheMapIsNotAveragedOver) {
   // in: Algorithm 1 tests the footprint's corners against the map's depth and takes such look-ups from
   // level-0 texels (shaders/maps/algorithm1.glsl). The rim's first frame read 1.375 when no tap was
   // tested, 1.281 with the four taps around x_o tested, 1.140 with the footprint's corners too. Those
-  // texels are each tested within ε_bias of x_o's depth (nearer and farther surfaces left out; the
-  // taps' filtered look-ups had averaged them in): 1.144 after 1 frame, 1.082 after 16 (1.113 with
-  // the filtered taps, 1.124 testing only the nearer side). What the mip filter still averages on one surface, the F^(-1/4)
-  // narrowing of the footprint takes away as frames accumulate (1.144 -> 1.082 after 16 frames here;
+  // texels are each tested within a slack of x_o's depth (ε_bias and the depth the surface's own
+  // slope spans over two texels; nearer and farther surfaces left out, which the taps' filtered
+  // look-ups had averaged in): 1.054 after 1 frame, 1.071 after 16 (1.113 with the filtered taps,
+  // 1.124 testing only the nearer side). What the mip filter still averages on one surface, the F^(-1/4)
+  // narrowing of the footprint takes away as frames accumulate (1.054 -> 1.071 after 16 frames here;
   // a backlit sphere's rim, where no look-up is an edge, reads 1.05 from the first frame: the cap at
   // half a diffusion length already bounds the footprint there).
   // Every frame at the pixel centres (render.aa=1): the per-pixel gather is the truth at each centre.

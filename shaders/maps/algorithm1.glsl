@@ -41,10 +41,10 @@ void countVplCoverage(int firstMap) {
 }
 
 // The level-0 texels of map k around the point at texture coordinates p (its bilinear 2×2) whose
-// surface lies within ε_bias of x_o's depth (z, zFar: x_o's depth ∓ ε_bias), each by its bilinear
-// weight: a bilinear look-up would average in the texels of a nearer surface that hides x_o from the
-// map (the drip overhanging the puddle) or of a farther one beyond x_o's silhouette.
-vec4 texelsSeeing(vec2 p, int k, float z, float zFar) {
+// surface lies within a slack of x_o's depth (zNear, zFar: x_o's depth ∓ the slack), each by its
+// bilinear weight: a bilinear look-up would average in the texels of a nearer surface that hides x_o
+// from the map (the drip overhanging the puddle) or of a farther one beyond x_o's silhouette.
+vec4 texelsSeeing(vec2 p, int k, float zNear, float zFar) {
   vec2 size = vec2(textureSize(uMaps, 0).xy);
   vec2 f = p * size - 0.5;
   vec2 w = fract(f);
@@ -52,7 +52,7 @@ vec4 texelsSeeing(vec2 p, int k, float z, float zFar) {
   vec3 corner = vec3((floor(f) + 1.0) / size, float(k));
   // textureGather's order: (0, 1), (1, 1), (1, 0), (0, 0) of the 2×2.
   vec4 weight = vec4((1.0 - w.x) * w.y, w.x * w.y, w.x * (1.0 - w.y), (1.0 - w.x) * (1.0 - w.y)) *
-                textureGather(uMapDepth, corner, z) * (1.0 - textureGather(uMapDepth, corner, zFar));
+                textureGather(uMapDepth, corner, zNear) * (1.0 - textureGather(uMapDepth, corner, zFar));
   return vec4(dot(weight, textureGather(uMaps, corner, 0)), dot(weight, textureGather(uMaps, corner, 1)),
               dot(weight, textureGather(uMaps, corner, 2)), dot(weight, textureGather(uMaps, corner, 3)));
 }
@@ -80,7 +80,6 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
       dy *= uMaxFootprint / footprint;
     }
     float z = t.z - uEpsBias * mapViews[k].depthScale.x;
-    float zFar = t.z + uEpsBias * mapViews[k].depthScale.x;
     vec2 texel = 0.5 / vec2(textureSize(uMapDepth, 0).xy);
     vec2 taps[4] = vec2[4](t.xy + vec2(-texel.x, -texel.y), t.xy + vec2(texel.x, -texel.y),
                            t.xy + vec2(-texel.x, texel.y), t.xy + vec2(texel.x, texel.y));
@@ -116,10 +115,18 @@ vec3 scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx, vec3 dpdy, out float seenBy
     // look-ups, weighted by their filtered depth tests, still averaged in the texels of the drip
     // overhanging the puddle (a red pixel 8.9x the reference's at t = 16 s, 160x90).
     vec4 m = vec4(0.0);
-    if (edge)
-      for (int i = 0; i < 4; ++i) m += texelsSeeing(taps[i], k, z, zFar);
-    else
+    if (edge) {
+      // The slack: ε_bias, plus how far the depth of x_o's own surface changes over the 2 texels
+      // the taps' 2×2s reach (depth spans 2 radii and a texel 2 radii / size, so tan θ / size a
+      // texel). Without it a map that sees a flat surface at 60° (its depth changing by 1.7 texel
+      // widths a texel, ε_bias under one at 128²) lost those texels and skipped x_o
+      // (MapCountRenderer.TheSlabsPixelsAreBinnedByTheSecondHaltonDirectionWithin60DegreesOfUp).
+      float tanTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0)) / max(cosTheta, 0.05);
+      float slack = uEpsBias * mapViews[k].depthScale.x + 2.0 * tanTheta / float(textureSize(uMapDepth, 0).x);
+      for (int i = 0; i < 4; ++i) m += texelsSeeing(taps[i], k, t.z - slack, t.z + slack);
+    } else {
       m = textureGrad(uMaps, vec3(t.xy, float(k)), dx, dy);
+    }
     if (m.a <= 0.0) continue;
     if (firstMap < 0) firstMap = k;
     if (cosTheta >= COVERAGE_MIN_COS && ++facing == 2) secondFacingMap = k;
