@@ -103,17 +103,21 @@ TEST(StillAverage, SphereEdgesConvergeToTheBoxFilter) {
     }
 }
 
-TEST(StillAverage, ReferenceBoxFilterConvergesToTheBoxFilter) {
+/// `tallow reference` of the Lambertian sphere with `passes` passes through `filter`'s sub-pixel points.
+gpu::Image sphereReference(int passes, sss::PixelFilter filter) {
   app::SceneOptions options;
   options.preset = test::testScene("lambert_sphere");
   options.sets = kSphereSets;
   const app::LoadedScene scene = app::loadScene(options);
   sss::ReferenceSettings r;
-  r.maxPasses = 64;
-  r.pixelFilter = sss::PixelFilter::Centre;
-  const gpu::Image centre = sss::renderReference(scene.config.scene, scene.config.render, r).radiance;
-  r.pixelFilter = sss::PixelFilter::Box;
-  const gpu::Image box = sss::renderReference(scene.config.scene, scene.config.render, r).radiance;
+  r.maxPasses = passes;
+  r.pixelFilter = filter;
+  return sss::renderReference(scene.config.scene, scene.config.render, r).radiance;
+}
+
+TEST(StillAverage, ReferenceBoxFilterConvergesToTheBoxFilter) {
+  const gpu::Image centre = sphereReference(64, sss::PixelFilter::Centre);
+  const gpu::Image box = sphereReference(64, sss::PixelFilter::Box);
   const Analytic a = analyticSphere(kSphereSize);
   const EdgeError c = edgeError(green(centre), a), b = edgeError(green(box), a);
   std::printf("[ aa      ] reference, %d edge pixels: mean |error| vs the box filter %.4f (centre), %.4f (box, 64 passes)\n",
@@ -133,14 +137,7 @@ TEST(StillAverage, FramesLookThroughTheReferencesSubPixelPositions) {
   test::PresetSession s(test::testScene("lambert_sphere"), sets);
   gpu::Image still;
   for (int k = 0; k < 16; ++k) still = s.render(0.0);
-  app::SceneOptions options;
-  options.preset = test::testScene("lambert_sphere");
-  options.sets = kSphereSets;
-  const app::LoadedScene scene = app::loadScene(options);
-  sss::ReferenceSettings r;
-  r.maxPasses = 16;
-  r.pixelFilter = sss::PixelFilter::Box;
-  const std::vector<double> reference = green(sss::renderReference(scene.config.scene, scene.config.render, r).radiance);
+  const std::vector<double> reference = green(sphereReference(16, sss::PixelFilter::Box));
   const std::vector<double> gpu = green(still);
   const Analytic a = analyticSphere(kSphereSize);
   double sum = 0.0;
