@@ -57,10 +57,8 @@ void setFlameMirrorUniforms(gpu::Program& p, const Scene& scene, const std::vect
     up.push_back(flames[i].up);
     sway.push_back(flames[i].sway);
     size.emplace_back(flames[i].height, flames[i].halfWidth, flames[i].radianceScale);
-    // The flame's light among the point lights, as setLightUniforms numbers them (scene order).
-    int index = 0;
-    for (int l = 0; l < flames[i].light; ++l) index += scene.lights[static_cast<std::size_t>(l)].kind == LightKind::Point;
-    pointLight.push_back(flames[i].light >= 0 ? index : -1);
+    pointLight.push_back(flames[i].light >= 0 ? pointLightUniformIndex(scene, static_cast<std::size_t>(flames[i].light))
+                                              : -1);
   }
   const int count = static_cast<int>(base.size());
   p.set("uFlameCount", count);

@@ -55,6 +55,12 @@ void setLightUniforms(gpu::Program& p, const Scene& scene, const RenderSettings&
   shadows.bind(directionalShadowUnit, pointShadowUnit);
 }
 
+int pointLightUniformIndex(const Scene& scene, std::size_t light) {
+  int index = 0;
+  for (std::size_t l = 0; l < light; ++l) index += scene.lights[l].kind == LightKind::Point ? 1 : 0;
+  return index;
+}
+
 void setCameraUniforms(gpu::Program& program, const CameraView& camera) {
   program.set("uViewProjection", camera.viewProjection);
   program.set("uCameraPosition", camera.position);

@@ -43,9 +43,11 @@ const float kBinStops = 4.0 / 3.0;  // σ_r: 0.4 decades = 1.33 stops per bin (D
 const float kLowStops = -24.0;    // log₂ of the darkest luminance told apart (black is put there)
 const float kGreyStops = -2.4739312;  // log₂ 0.18: scene mid grey, where the lift ends
 
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
 // log₂ of the exposed luminance, and its place along the grid's range axis (in bins).
 float logLuminance(vec3 c) {
-  float y = dot(c, vec3(0.2126, 0.7152, 0.0722)) * uExposureScale;
+  float y = luminance(c) * uExposureScale;
   return y > 0.0 ? max(log2(y), kLowStops) : kLowStops;
 }
 float rangeCoordinate(float stops) { return clamp((stops - kLowStops) / kBinStops, 0.0, float(kBins - 1)); }
@@ -101,8 +103,6 @@ void slice() {
   float lift = uStrength * max(0.0, kGreyStops - base);
   imageStore(uGainOut, p, vec4(exp2(lift), 0.0, 0.0, 0.0));
 }
-
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void blendConsistently() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);

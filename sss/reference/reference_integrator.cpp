@@ -502,14 +502,17 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
     const glm::dvec4 p = inverseViewProjection * glm::dvec4(x, y, z, 1.0);
     return glm::dvec3(p) / p.w;
   };
+  // Whether light l is hidden from the surface point x (normal n), as its shadow map hides it on the GPU.
+  const auto shadowed = [&](const Light& l, const Incident& in, const glm::dvec3& x, const glm::dvec3& n) {
+    return render.shadows && l.castsShadows && rays.occluded(x + offset * n, in.toLight, in.distance - 2.0 * offset);
+  };
   const auto shadeOpaque = [&](const SceneObject& o, const glm::dvec3& x, const glm::dvec3& n) {
     glm::dvec3 e(0.0);
     for (const Light& l : scene.lights) {
       const Incident in = incident(l, x);
       const double c = glm::dot(n, in.toLight);
       if (!(c > 0.0)) continue;
-      if (render.shadows && l.castsShadows && rays.occluded(x + offset * n, in.toLight, in.distance - 2.0 * offset))
-        continue;
+      if (shadowed(l, in, x, n)) continue;
       e += in.irradiance * c;
     }
     const glm::dvec3 albedo(o.albedo);
@@ -559,10 +562,9 @@ ReferenceResult renderReference(const Scene& sceneAsLoaded, const RenderSettings
       for (const FlameSheet& f : flames) {  // surface.frag's flame reflection, where the flame's light reaches
         const glm::dvec3 seen = flameSeenAlong(xw, mirror, f);
         if (seen == glm::dvec3(0.0)) continue;
-        if (f.light >= 0 && render.shadows) {
+        if (f.light >= 0) {
           const Light& l = scene.lights[static_cast<std::size_t>(f.light)];
-          const Incident in = incident(l, xw);
-          if (l.castsShadows && rays.occluded(xw + offset * n, in.toLight, in.distance - 2.0 * offset)) continue;
+          if (shadowed(l, incident(l, xw), xw, n)) continue;
         }
         mirrored += double(f.radianceScale) * seen;
       }
