@@ -13,7 +13,12 @@
   tests/output_dither_test.cpp: the dithered mean; tests/local_exposure_gltest.cpp: the lift of
   uniform and textured regions against their analytic answer; tests/default_picture_gltest.cpp: the
   default PNG's hue, white and dark pixels and the table's glow), whose printed figures the section
-  quotes.
+  quotes;
+- the speckles at the defaults: `tallow reference` of the candle at 160x90, t = 16 s, 1024 passes,
+  against a capture of the same frame as the README's still (16 renders), both without the flame's
+  sheet and the VPLs (as results_animated.py's references: the reference draws neither); `tallow
+  compare --json` counts the fireflies of each on the wax (a channel above 4x its 5x5 median) and
+  names those where the reference has none.
 
   results_picture.py run DIR [--quick]     runs into DIR (TALLOW: the binary; TALLOW_GLTESTS,
                                            TALLOW_TESTS: the test binaries); --quick: 1 frame
@@ -35,6 +40,7 @@ import results_sections  # noqa: E402
 from results_sections import fmt  # noqa: E402
 
 HEADING = "## The clean picture (issue 36)"
+CHANNELS = ("red", "green", "blue")
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SIZE = "480x270"
 FRAMES, QUICK_FRAMES = 3, 1
@@ -42,6 +48,9 @@ CASES = {"on": [], "off": ["--set", "render.aa=1", "--set", "render.bloom=0", "-
 TESTS = {"gltests": ("TALLOW_GLTESTS", "build/tests/tallow_gltests",
                      "StillAverage.*:Bloom.*:LocalExposureGL.*:DefaultPicture.*"),
          "tests": ("TALLOW_TESTS", "build/tests/tallow_tests", "OutputDither.*")}
+# The speckles' frame (issue 36: 160x90 against a 1024-pass reference).
+SPECKLE_SIZE, SPECKLE_TIME, SPECKLE_PASSES, QUICK_SPECKLE_PASSES = "160x90", "16", "1024", "16"
+SPECKLE_SETS = ["--set", "render.flame=false", "--set", "vpl.count=0"]
 FIGURE = "picture_aa_bloom.png"
 SHOWN = {"off": "picture_shown_before.png", "on": "picture_shown_after.png"}
 
@@ -61,6 +70,19 @@ def run(work, quick):
                                os.path.join(work, "on", "frame_0000.exr"), "--out", figure, "--exposure-ev", "-1",
                                "--caption", "render.aa=1, render.bloom=0", "--caption", "the candle preset (aa 16, bloom 0.6)",
                                "--title", "The default candle, a still of 16 renders at 480x270"], figure, quiet=True)
+    speckles = os.path.join(work, "speckles")
+    os.makedirs(speckles, exist_ok=True)
+    ref = os.path.join(speckles, "reference.exr")
+    results_sections.run_once([tallow, "reference", "--preset", "candle", "--size", SPECKLE_SIZE, "--time", SPECKLE_TIME,
+                               "--spp", QUICK_SPECKLE_PASSES if quick else SPECKLE_PASSES, "--out", ref] + SPECKLE_SETS,
+                              ref, quiet=True)
+    still = os.path.join(speckles, "still")
+    results_sections.run_once([tallow, "capture", "--preset", "candle", "--size", SPECKLE_SIZE, "--time", SPECKLE_TIME,
+                               "--accumulate", "16", "--exr-float", "--out", still] + SPECKLE_SETS,
+                              os.path.join(still, "stats.json"), quiet=True)
+    errors = os.path.join(speckles, "error.json")
+    results_sections.run_once([tallow, "compare", os.path.join(still, "frame_0000.exr"), ref, "--mask",
+                               os.path.join(speckles, "reference_stderr.exr"), "--json", errors], errors, quiet=True)
     for name, (variable, default, pattern) in TESTS.items():
         log = os.path.join(work, name + ".log")
         if os.environ.get("TALLOW_RESULTS_RESUME") == "1" and os.path.exists(log):
@@ -83,6 +105,11 @@ def pass_ratio(stats, name):
         if total and part is not None and total > part:
             ratios.append(total / (total - part))
     return statistics.median(ratios) if ratios else None
+
+
+def ratio(value):
+    """'1.23x', or 'above' for a ratio to 0 (JSON null)."""
+    return "%.2fx" % value if value is not None else "above"
 
 
 def printed(log, pattern):
@@ -118,6 +145,8 @@ def section(work):
     picture = printed(gl, r"default candle (\d+)x(\d+): (\d+) wax pixels, (\d+) lit: median hue ([\d.]+) deg, value "
                           r"([\d.]+), (\d+) white; (\d+) dark dots; the table under it: brightest tenth from ([\d.]+) "
                           r"\((\d+) pixels\)")
+    with open(os.path.join(work, "speckles", "error.json")) as f:
+        speckles = json.load(f)["error"]
     still = pass_ratio(on, "camera.still")
     bloom = pass_ratio(on, "camera.bloom")
     local = pass_ratio(on, "camera.local_exposure")
@@ -144,6 +173,20 @@ def section(work):
                  % (reference[0], fmt(reference[1], 4), fmt(reference[2], 4), reference[2] / reference[1]))
     lines.append("| the default candle (method=albedo, no flame), 240x135 against 960x540 box-filtered 4x4 in linear light (sRGB units; issue 36's bound 0.047) | %d | %s | %s | %.2fx |"
                  % (candle[0], fmt(candle[1], 4), fmt(candle[2], 4), candle[2] / candle[1]))
+    lines.append("")
+    lines.append("**Speckles** at the defaults: the candle at %s, t = %s s, as the README's still (16 renders), "
+                 "against `tallow reference` with %s passes (both without the flame's sheet and the VPLs): %d "
+                 "fireflies on the wax against the reference's own %d (issue 36's bound: the reference's + 2), "
+                 "relative RMSE %s%%."
+                 % (SPECKLE_SIZE, SPECKLE_TIME, SPECKLE_PASSES, speckles["fireflies"], speckles["reference_fireflies"],
+                    fmt(100 * speckles["rel_rmse"], 2)))
+    extra = speckles.get("fireflies_not_in_reference") or []
+    if extra:
+        lines.append("Where the reference has none: " + "; ".join(
+            "(%d, %d) %s, %s its 5x5 median and %s the reference there (the reference's own ratio to its "
+            "median %s)" % (f["x"], f["y"], CHANNELS[f["channel"]], ratio(f["over_median"]), ratio(f["over_reference"]),
+                            ratio(f["reference_over_median"]))
+            for f in extra) + ".")
     lines.append("")
     lines.append("**Cost** on %s, the README's still (16 renders a frame) of the default candle at %s, medians over "
                  "%d frame(s) of one run: the frame takes %.4fx the frame without its `camera.still` pass, %.4fx "
@@ -190,7 +233,7 @@ def section(work):
     lines.append("")
     lines.append("Compared on the EXRs (the radiance, which holds no glare), in false colour: what the still's "
                  "average changes: the silhouettes, the rim and the table's far edge (anti-aliasing) and the maps' "
-                 "noise, which differs from run to run and which the weighted average of 16 frames lowers.")
+                 "noise, which differs from run to run and which the still's average of 16 frames lowers.")
     lines.append("")
     lines.append(results_sections.rerun("results_picture.py"))
     lines.append("")

@@ -56,6 +56,9 @@ layout(location = 1) out vec4 oCoverage;  // r: shaded from the radiosity maps, 
 // sss.maps=auto's per-pixel record, counted after the pass (maps/coverage_histogram.comp): the bins
 // + 1 of Algorithm 1's first map and second facing map (0: not shaded by Algorithm 1).
 layout(location = 2) out uvec2 oCoverageBins;
+// The translucent part of oRadiance, F_t/π·B (a: 1 on a translucent surface, 0 elsewhere): a still
+// weights it by the samples the estimate holds and the rest equally (camera/still_average.comp).
+layout(location = 3) out vec4 oTranslucent;
 
 const float PI = 3.14159265358979;
 
@@ -100,7 +103,9 @@ void main() {
       mirrored += uFlameSize[f].z * seen;
     }
     vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, eta) * mirrored : vec3(0.0);
-    oRadiance = vec4(fresnelTransmittance(cosO, eta) / PI * b + specular, 1.0);
+    vec3 transmitted = fresnelTransmittance(cosO, eta) / PI * b;
+    oRadiance = vec4(transmitted + specular, 1.0);
+    oTranslucent = vec4(transmitted, 1.0);
     oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
     return;
   }
@@ -109,4 +114,5 @@ void main() {
   oRadiance = vec4(uAlbedo / PI * e + uAlbedo * uAmbient, 1.0);
   oCoverage = vec4(0.0, 0.0, 1.0, 0.0);
   oCoverageBins = uvec2(0u);
+  oTranslucent = vec4(0.0);
 }

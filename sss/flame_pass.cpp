@@ -109,6 +109,8 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   glEnable(GL_BLEND);
   glBlendFunci(0, GL_ONE, GL_ONE);         // radiance: added
   glBlendFunci(1, GL_ZERO, GL_SRC_COLOR);  // coverage: alpha halved where the flame is in front
+  // The translucent part (attachment 3) stays the wax's: flame.frag does not write it.
+  glColorMaski(3, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   p.use();
   emptyVao_->bind();
   // The lights as sceneAtTime placed them: each the emission of the flame drawn here.
@@ -124,6 +126,7 @@ void FlamePass::run(FrameContext& context, bool /*changed*/) {
   glBindVertexArray(0);
   glUseProgram(0);
   glBlendFunc(GL_ONE, GL_ZERO);  // GL's default, for every draw buffer
+  glColorMaski(3, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glDisable(GL_DEPTH_TEST);

@@ -156,6 +156,7 @@ void CameraPass::run(FrameContext& context, bool /*changed*/) {
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 1, &none.x);
   const glm::uvec4 noBins(0u);
   glClearNamedFramebufferuiv(t.framebuffer.id(), GL_COLOR, 2, &noBins.x);
+  glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 3, &none.x);
   const float one = 1.0f;
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_DEPTH, 0, &one);
   context.cameraFrame = frame_++;
@@ -221,14 +222,15 @@ void LocalExposurePass::run(FrameContext& context, bool /*changed*/) {
 std::string StillAveragePass::reason(const FrameState& state) const {
   return "render.aa = " + std::to_string(state.settings.aaSamples) +
          ": while nothing changes, each frame drawn at the next sub-pixel position and averaged into the "
-         "picture (anti-aliased edges, the translucent estimate weighted by its samples)";
+         "picture (anti-aliased edges; the translucent estimate weighted by its samples where it is drawn)";
 }
 
 PassIo StillAveragePass::io(const FrameState&) const { return {{resource::kCamera, "render.aa"}, {}, {}}; }
 
 void StillAveragePass::run(FrameContext& context, bool /*changed*/) {
   context.modules.obtain<StillAverage>(context.shaders)
-      .add(context.target.radiance, context.method.stillWeight(context), context.stillFrame == 0);
+      .add(context.target.radiance, context.target.translucent, context.method.stillWeight(context),
+           context.stillFrame == 0);
 }
 
 }  // namespace tallow::sss

@@ -60,7 +60,8 @@ std::size_t FrameMemory::total() const {
 }
 
 std::size_t renderTargetBytes(int width, int height) {
-  return screen(GL_RGBA32F, width, height) + screen(GL_RGBA8, width, height) + screen(GL_RG8UI, width, height) +
+  // sss::CameraTarget: radiance, coverage, coverage bins, the translucent part, depth.
+  return 2 * screen(GL_RGBA32F, width, height) + screen(GL_RGBA8, width, height) + screen(GL_RG8UI, width, height) +
          screen(GL_DEPTH_COMPONENT32F, width, height);
 }
 
@@ -201,8 +202,9 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
     add("bloom", "render.bloom>0", Bloom::bytesFor(settings.width, settings.height));
   if (settings.localExposure > 0.0f)  // the bilateral grids and the picture shown
     add("local exposure", "render.local_exposure>0", LocalExposure::bytesFor(settings.width, settings.height));
-  if (settings.aaSamples > 1)  // sss/still_average.h: the still's mean, RGBA32F
-    add("still average", "render.aa=" + std::to_string(settings.aaSamples), screen(GL_RGBA32F, settings.width, settings.height));
+  if (settings.aaSamples > 1)  // sss/still_average.h: the still's three means
+    add("still average", "render.aa=" + std::to_string(settings.aaSamples),
+        2 * screen(GL_RGBA32F, settings.width, settings.height) + screen(GL_R32F, settings.width, settings.height));
   return m;
 }
 

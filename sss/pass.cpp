@@ -11,12 +11,15 @@ void CameraTarget::ensure(int width, int height) {
   coverage.setFilter(GL_NEAREST, GL_NEAREST);
   coverageBins = gpu::Texture::create2D(GL_RG8UI, width, height);
   coverageBins.setFilter(GL_NEAREST, GL_NEAREST);
+  translucent = gpu::Texture::create2D(GL_RGBA32F, width, height);
+  translucent.setFilter(GL_NEAREST, GL_NEAREST);
   framebuffer = gpu::Framebuffer();
   framebuffer.attachColor(0, radiance);
   framebuffer.attachColor(1, coverage);
   framebuffer.attachColor(2, coverageBins);
+  framebuffer.attachColor(3, translucent);
   framebuffer.attachDepth(depth);
-  framebuffer.setDrawBuffers(3);
+  framebuffer.setDrawBuffers(4);
   framebuffer.checkComplete("camera target");
 }
 

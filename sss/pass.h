@@ -85,14 +85,15 @@ class ModuleStore {
 };
 
 /// The camera's render target: linear radiance, Algorithm 1's coverage (r translucent, g seen by a
-/// map, b opaque), sss.maps=auto's per-pixel coverage bins (shaders/surface.frag oCoverageBins) and
-/// depth.
+/// map, b opaque), sss.maps=auto's per-pixel coverage bins (shaders/surface.frag oCoverageBins), the
+/// translucent part of the radiance (rgb: F_t/π·B, a: 1 where a translucent surface is drawn; the
+/// still's average weights it by the estimate's samples, sss/still_average.h) and depth.
 struct CameraTarget {
-  gpu::Texture radiance, coverage, coverageBins, depth;
+  gpu::Texture radiance, coverage, coverageBins, translucent, depth;
   gpu::Framebuffer framebuffer;
   /// (Re)allocates for width × height; keeps the textures when the size is unchanged.
   void ensure(int width, int height);
-  std::size_t bytes() const { return radiance.bytes() + coverage.bytes() + coverageBins.bytes() + depth.bytes(); }
+  std::size_t bytes() const { return radiance.bytes() + coverage.bytes() + coverageBins.bytes() + translucent.bytes() + depth.bytes(); }
 };
 
 /// Everything a pass's run() may use.

@@ -4,7 +4,8 @@
 // unit disc and 0 outside, integrated over each pixel's square on a 32×32 grid on the CPU. Then the
 // measurement of issue 36: the default candle with method=albedo, its edges against the same frame
 // at 4× the size box-filtered 4×4 in linear light, in sRGB units; and that any change restarts the
-// still at the pixel centres, so that playback draws what it drew before render.aa.
+// still at the pixel centres, so that playback draws what it drew before render.aa. First, the
+// average itself on frames made by hand, against sums done here.
 #include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
@@ -15,12 +16,74 @@
 #include <vector>
 
 #include "app/config/setup.h"
+#include "gpu/gl_context.h"
+#include "gpu/gl_objects.h"
+#include "gpu/readback.h"
+#include "gpu/shader_library.h"
 #include "gpu/tonemap.h"
+#include "sss/still_average.h"
 #include "sss/reference/reference_integrator.h"
 #include "support/render_support.h"
 
 namespace tallow {
 namespace {
+
+/// One frame of four pixels for StillAverage::add: radiance and translucent part (a: h).
+struct HandFrame {
+  std::vector<glm::vec4> radiance, translucent;
+};
+
+TEST(StillAverage, TheTranslucentPartIsWeightedByItsSamplesAndTheRestIsThePlainMean) {
+  // Eight frames with weights w_k = k (the maps' frames grow as the still goes on):
+  //  0: an edge pixel, translucent (T = R = 1) on odd frames, the table (R = 0.2) on even ones:
+  //     its picture is the share of frames on the wax times the wax's estimate plus the table's
+  //     share, 1/2·1 + 1/2·0.2 = 0.6, whatever the weights (weighting whole frames gives 0.556);
+  //  1: always translucent, estimate T_k = 1/k plus a specular 0.3: Σ w T / Σ w + 0.3;
+  //  2: always opaque, R_k = k: the plain mean, 4.5;
+  //  3: always translucent, T = 2, specular 0.1·k: 2 + the specular's plain mean, 2.45.
+  // Then a restart: the picture is that frame (to float rounding: R − T + w·T/w).
+  const std::unique_ptr<gpu::GlContext> context = gpu::GlContext::create(gpu::ContextOptions{});
+  const gpu::ShaderLibrary shaders;
+  sss::StillAverage still(shaders);
+  gpu::Texture radiance = gpu::Texture::create2D(GL_RGBA32F, 4, 1);
+  gpu::Texture translucent = gpu::Texture::create2D(GL_RGBA32F, 4, 1);
+  const auto frame = [](int k) {
+    const float odd = static_cast<float>(k % 2);
+    const glm::vec4 specular(0.1f * k, 0.1f * k, 0.1f * k, 0.0f);
+    HandFrame f;
+    f.translucent = {glm::vec4(glm::vec3(odd), odd), glm::vec4(glm::vec3(1.0f / k), 1.0f), glm::vec4(0.0f),
+                     glm::vec4(2.0f, 2.0f, 2.0f, 1.0f)};
+    f.radiance = {odd > 0.0f ? glm::vec4(1.0f) : glm::vec4(0.2f, 0.2f, 0.2f, 1.0f),
+                  glm::vec4(glm::vec3(1.0f / k + 0.3f), 1.0f), glm::vec4(glm::vec3(static_cast<float>(k)), 1.0f),
+                  glm::vec4(2.0f, 2.0f, 2.0f, 1.0f) + specular};
+    return f;
+  };
+  const auto add = [&](const HandFrame& f, double weight, bool first) {
+    glTextureSubImage2D(radiance.id(), 0, 0, 0, 4, 1, GL_RGBA, GL_FLOAT, f.radiance.data());
+    glTextureSubImage2D(translucent.id(), 0, 0, 0, 4, 1, GL_RGBA, GL_FLOAT, f.translucent.data());
+    still.add(radiance, translucent, weight, first);
+    return gpu::readTexture(radiance);
+  };
+  gpu::Image picture;
+  double weighted = 0.0, weights = 0.0;
+  for (int k = 1; k <= 8; ++k) {
+    picture = add(frame(k), k, k == 1);
+    weighted += k * (1.0 / k);
+    weights += k;
+  }
+  EXPECT_EQ(still.frames(), 8);
+  const double want[4] = {0.6, weighted / weights + 0.3, 4.5, 2.45};
+  for (int x = 0; x < 4; ++x) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(picture.at(x, 0)[c], want[x], 2e-6) << "pixel " << x << " band " << c;
+    EXPECT_NEAR(picture.at(x, 0).a, 1.0, 1e-6) << "pixel " << x;
+  }
+  const HandFrame restart = frame(5);
+  const gpu::Image restarted = add(restart, 3.0, true);
+  EXPECT_EQ(still.frames(), 1);
+  for (int x = 0; x < 4; ++x)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(restarted.at(x, 0)[c], restart.radiance[static_cast<std::size_t>(x)][c], 1e-6) << "pixel " << x;
+}
 
 constexpr int kSphereSize = 32;
 constexpr double kViewHeight = 2.5;  // lambert_sphere.json's orthographic height
