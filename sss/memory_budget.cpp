@@ -93,7 +93,8 @@ std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history)
   // The maps' G-buffer (position, normal): the compute gather's input and the history's; the
   // history keeps the last frame's as well,
   if (computeGather || history) bytes += 2 * layers2D(GL_RGBA32F, size, k);
-  // and, on a reuse, the kept history and this frame's mean beside it, both mipmapped.
+  // and, on a reuse, the kept history and this frame's mean beside it, both mipmapped (the latter
+  // also holds what a still after motion fades out).
   if (history) bytes += 2 * layers2D(GL_RGBA32F, size, k) + 2 * layers2D(GL_RGBA32F, size, k, levels);
   return bytes;
 }

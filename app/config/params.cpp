@@ -414,7 +414,8 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                       "degrees) still hold keeps at most this many frames of its estimate, the others "
                                       "start again, and what is kept is rescaled to follow a moving light "
                                       "(sss.history_rescale); 0 restarts the maps on every change, as the paper "
-                                      "does (docs/RESULTS.md compares the two).",
+                                      "does (docs/RESULTS.md compares the two). When the motion stops, the kept frames fade out over "
+                                      "sss.frames frames, so the still ends where a restart's would.",
                                       0, 1 << 20),
                               8),
                   [](auto& c) -> auto& { return c.render.sss.history; }));

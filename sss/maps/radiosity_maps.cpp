@@ -170,6 +170,7 @@ RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
       mapCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/radiosity_map.comp"}}}),
       historyCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/history.comp"}}}),
       historyMerge_(shaders, {{{GL_COMPUTE_SHADER, "maps/history_merge.comp"}}}),
+      historyFade_(shaders, {{{GL_COMPUTE_SHADER, "maps/history_fade.comp"}}}),
       dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
       dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
   const float zero[4] = {0, 0, 0, 0};
@@ -440,6 +441,12 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     frames_ = 0;
     seed_ = 0;
   }
+  if (update != MapsUpdate::Accumulate) fadeFrames_ = 0;  // a fade in progress ends with the still
+  // The first frame of a still after motion: the kept frames start to fade, and the count and the
+  // seeds start over as a restart at the pause would (its frames then match this still's).
+  const bool stillAfterMotion = update == MapsUpdate::Accumulate && lastUpdate_ == MapsUpdate::Reuse && history &&
+                                frames_ > 0;
+  lastUpdate_ = update;
   const bool fresh = frames_ == 0;  // new views, maps emptied
   ensureMapTargets(k, size);
   const bool compute = s.computeGather;
@@ -546,6 +553,12 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     }
   }
 
+  if (stillAfterMotion) {  // before this frame's samples, which stay
+    startFade(s.frames);
+    frames_ = 0;
+    seed_ = 0;
+  }
+
   if (compute) {
     gpu::Program& p = mapCompute_;
     p.use();
@@ -577,6 +590,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     drawTranslucent(mapProgram_);
   }
   if (reuse) mergeHistory(settings);
+  if (fadeFrames_ > 0) fade();
   ++frames_;
   ++seed_;
   glGenerateTextureMipmap(maps_.id());
@@ -614,6 +628,29 @@ void RadiosityMaps::mergeHistory(const RenderSettings& settings) {
   p.set("uStage", 1);
   glDispatchCompute(groups, groups, static_cast<GLuint>(k));
   glMemoryBarrier(barrier);
+}
+
+void RadiosityMaps::startFade(int frames) {
+  // Before this frame's gather: the kept history and the last moving frame's samples.
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+  glCopyImageSubData(maps_.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, historyFresh_.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0,
+                     maps_.width(), maps_.height(), maps_.depth());
+  fadeFrames_ = std::max(frames, 1);
+  fadeDone_ = 0;
+}
+
+void RadiosityMaps::fade() {
+  gpu::Program& p = historyFade_;
+  p.use();
+  p.set("uShare", 1.0f / static_cast<float>(fadeFrames_));
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(1, historyFresh_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+  const auto groups = static_cast<GLuint>((maps_.width() + 7) / 8);
+  glDispatchCompute(groups, groups, static_cast<GLuint>(maps_.depth()));
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  gpu::unbindComputeState(2, 0);
+  if (++fadeDone_ == fadeFrames_) fadeFrames_ = 0;
 }
 
 std::size_t RadiosityMaps::bytes() const {

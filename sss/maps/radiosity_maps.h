@@ -84,7 +84,8 @@ int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, fl
 
 /// What step 2 does with the maps this frame.
 enum class MapsUpdate {
-  Accumulate,  ///< nothing moved: N more samples added to every texel
+  Accumulate,  ///< nothing moved: N more samples added to every texel (after a reuse, the still
+               ///< starts: its count and seeds start over while the kept frames fade out)
   Restart,     ///< new views, the maps emptied (the paper, whenever light or geometry change)
   Reuse,       ///< the geometry or a light moved: each texel keeps, trims or resets its sum by
                ///< sss.history (maps/history.comp), then N samples; a restart when it cannot
@@ -110,12 +111,17 @@ class RadiosityMaps {
   /// the accumulation emptied; on a reuse (sss.history > 0; a restart when the objects' bounding
   /// sphere left the views' or nothing was accumulated), the maps' G-buffer anew and each texel's
   /// history kept where its surface point and normal hold; then one frame of N samples added to
-  /// every map. Needs the light G-buffers of renderLightGBuffers.
+  /// every map. The first accumulating frame after a reuse starts a still: frames() and the seeds
+  /// start over at 0 and what the maps held then fades out linearly over sss.frames frames
+  /// (maps/history_fade.comp), so that once the still has sss.frames frames the maps hold exactly
+  /// what a restart at the pause would have accumulated (issue 38). Needs the light G-buffers of
+  /// renderLightGBuffers.
   void renderMaps(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                   MapsUpdate update);
 
-  /// F, frames accumulated in the maps since the last restart (after a reuse, at most sss.history;
-  /// per texel, the maps' alpha holds its own count)
+  /// F, frames accumulated in the maps since the last restart or the start of a still (after a
+  /// reuse, at most sss.history; per texel, the maps' alpha holds its own count, with the fading
+  /// frames' share while a still after motion starts)
   int frames() const { return frames_; }
   int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
   int mapSize() const { return mapSize_; }  ///< the maps' size in use (sss.map_size, or what auto chose)
@@ -166,10 +172,15 @@ class RadiosityMaps {
   /// After the gather on a history reuse: the kept history, rescaled with sss.history_rescale, and
   /// this frame's estimate added into the maps (maps/history_merge.comp).
   void mergeHistory(const RenderSettings& settings);
+  /// A still after motion: what the maps hold at its start is copied into historyFresh_'s level 0
+  /// (free until the next reuse, which ends the fade); each of its first fadeFrames_ frames
+  /// subtracts it / fadeFrames_ (maps/history_fade.comp).
+  void startFade(int frames);
+  void fade();
 
 
   gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_,
-      historyMerge_;
+      historyMerge_, historyFade_;
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
   gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
@@ -189,7 +200,9 @@ class RadiosityMaps {
   BoundingSphere sphere_;
   BoundingSphere viewSphere_;  ///< the sphere views_ were made for
   int frames_ = 0;
-  int seed_ = 0;  ///< frames since the last restart: the estimator's frame seed (never repeats on a reuse)
+  int seed_ = 0;  ///< frames since the last restart or still: the estimator's frame seed (never repeats on a reuse)
+  MapsUpdate lastUpdate_ = MapsUpdate::Restart;
+  int fadeFrames_ = 0, fadeDone_ = 0;  ///< the still's fade: over how many frames, how many done
   int lightMapSize_ = 0;
   int mapSize_ = 0;                ///< chosen at each restart (sss.map_size=auto: sss/maps/map_resolution.h)
   double shortestDiffusionMm_ = 0; ///< of the translucent materials, at the last light G-buffers
