@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +34,27 @@ std::vector<std::string> with(std::vector<std::string> sets, const std::string& 
 }
 
 int mapsUsed(const test::PresetSession& s) { return static_cast<int>(s.renderer().radiosityMaps()->views().size()); }
+
+TEST(MapCountRenderer, TheBlobPlayingAt8FpsKeepsItsK) {
+  // Issue 38: played at 8 fps, the blob's grazing share at K = 12 wanders around the 2% tolerance
+  // (2.1% at frame 9); without the hysteresis band K went 16, 12, …, 12, 24, 12 at 320x180, each
+  // change restarting and reallocating the maps. K may settle in the first two frames and change at
+  // most once after.
+  test::PresetSession session("blob", {"render.width=320", "render.height=180", "sss.samples=1", "vpl.count=0",
+                                       "sss.map_size=128", "sss.light_map_size=128", "sss.maps=auto"});
+  const double start = session.scene().startS;
+  std::vector<int> used;
+  std::string history;
+  for (int frame = 0; frame < 12; ++frame) {
+    session.render(start + frame / 8.0);
+    used.push_back(mapsUsed(session));
+    history += std::to_string(used.back()) + " ";
+  }
+  int changes = 0;
+  for (std::size_t i = 2; i < used.size(); ++i) changes += used[i] != used[i - 1] ? 1 : 0;
+  std::printf("[ maps    ] blob at 8 fps, 12 frames, K: %s(%d changes after the second frame)\n", history.c_str(), changes);
+  EXPECT_LE(changes, 1) << history;
+}
 
 TEST(MapCountRenderer, TheBunnySettlesOnMapsThatLeaveNoHoles) {
   test::PresetSession session("bunny", with(kSmallBunny, "sss.maps=auto"));

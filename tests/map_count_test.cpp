@@ -124,6 +124,32 @@ TEST(MapCount, PixelsThatOnlyGrazingMapsSeeCountWithTheirOwnTolerance) {
   EXPECT_EQ(c.k(), 8);
 }
 
+TEST(MapCount, ACoverageThatWandersWithinTheBandKeepsK) {
+  // 10000 pixels all seen by map 0; facing them, 16 maps leave none with fewer than two, 12 maps
+  // 1.2%, 2.1% or 3.5% (a playing blob's grazing share from frame to frame). Within m·τ = 3%: K
+  // stays; beyond it K doubles. Without the band (grow above τ = 2%) the 2.1% frame doubled K.
+  const auto at12 = [](std::uint64_t unseenFacing) {
+    MapCoverageCounts m = counts(16, histogram({10000}, 0));
+    m.cameraFacing.first[0] = 10000 - unseenFacing - 201;
+    m.cameraFacing.first[11] = 201;  // the 12th map is the second facing one of 2.01% of them
+    m.cameraFacing.unseen = unseenFacing;
+    return m;
+  };
+  MapCountChooser c;
+  EXPECT_TRUE(c.update(at12(0)));  // 16 maps face every pixel twice
+  ASSERT_EQ(c.k(), 12) << "without map 12: 2.01% unseen, over 0% + τ (2%) by a pixel";
+  for (std::uint64_t unseen : {210u, 120u, 210u}) {
+    MapCoverageCounts m = at12(unseen);
+    m.maps = 12;
+    EXPECT_FALSE(c.update(m)) << unseen << " of 10000";
+    EXPECT_EQ(c.k(), 12);
+  }
+  MapCoverageCounts far = at12(350);
+  far.maps = 12;
+  EXPECT_TRUE(c.update(far));
+  EXPECT_EQ(c.k(), 24) << "3.5% > 1.5 x 2%, and no larger K measured that much";
+}
+
 /// A scene as the chooser sees it: per point, the set of the 32 Halton maps that see it (a bit
 /// mask); the counts a K gives follow from it, as Algorithm 1 makes them.
 struct CoverageModel {
@@ -180,10 +206,11 @@ TEST(MapCount, RandomScenesSettleOnAKThatSeesWhatThirtyTwoSeeWithinTheTolerance)
     for (int x : ks) history += std::to_string(x) + " ";
     for (std::size_t i = ks.size() - 5; i < ks.size(); ++i) ASSERT_EQ(ks[i], k) << "scene " << scene << ": K " << history;
     // Against the model: the chosen K leaves unseen at most the tolerance more than 32 maps do
-    // (when those leave more than the tolerance: holes), or than the tolerance itself (growth
-    // stops there)…
+    // (when those leave more than the tolerance: holes), or than m times the tolerance itself
+    // (growth stops there: kAutoMapsHysteresis)…
     const double tau = sss::kAutoMapsHoleTolerance;
-    EXPECT_LE(m.unseenShare(k), std::max(m.unseenShare(32), tau) + tau + 1e-12) << "scene " << scene << ", K " << k;
+    EXPECT_LE(m.unseenShare(k), std::max(m.unseenShare(32), sss::kAutoMapsHysteresis * tau) + tau + 1e-12)
+        << "scene " << scene << ", K " << k;
     // … and it is the fewest maps that do so: every smaller K leaves more than the tolerance
     // unseen beyond the fewest unseen measured at K or at a larger K the chooser tried.
     double floor = 1.0;

@@ -52,7 +52,7 @@ bool MapCountChooser::update(const MapCoverageCounts& counts) {
       floor = std::min(floor, it->second[h]);
       unseenAnyway = unseenAnyway || it->second[h] >= share[h] - tolerance[h];
     }
-    grow = grow || (share[h] > tolerance[h] && !unseenAnyway);
+    grow = grow || (share[h] > kAutoMapsHysteresis * tolerance[h] && !unseenAnyway);
     sufficient = std::max(sufficient, smallestSufficient(*histograms[h], k_, floor + tolerance[h]));
   }
   if (grow && k_ < kAutoMapsMax) {

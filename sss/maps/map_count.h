@@ -19,9 +19,14 @@
 //   - shrink to the smallest K' that leaves at most τ_h more of h's points unseen than the fewest
 //     measured so far at this K or a larger one (in every histogram). Against that floor, not the
 //     current K, so that K does not creep down a map at a time, each losing τ_h again;
-//   - grow (double, at most kAutoMapsMax) while more than τ_h of a histogram's points are unseen and
-//     no larger K is known to leave about as many unseen (what no direction reaches: the inside of
-//     a closed concavity), so that K does not swing between two values.
+//   - grow (double, at most kAutoMapsMax) while more than m·τ_h of a histogram's points are unseen
+//     and no larger K is known to leave about as many unseen (what no direction reaches: the inside
+//     of a closed concavity), so that K does not swing between two values.
+// m = kAutoMapsHysteresis: a K chosen for leaving at most τ more unseen grows again only past m·τ,
+// so a playing preset keeps its K while its coverage wanders a little from frame to frame (issue
+// 38: with m = 1 the blob at 8 fps went 16, 12, …, 12, 24, 12 as the grazing share at K = 12
+// touched 2.1% for one frame, and each change restarts the maps and reallocates them). The band is
+// on growth only: a tighter shrink (τ / m) took the bunny from 12 maps to 14 for 1% of its pixels.
 // A change of K restarts the maps (like any change of sss.maps).
 #include <array>
 #include <cstdint>
@@ -42,6 +47,8 @@ constexpr int kAutoMapsFirst = 16;  ///< K of the first frames, before any cover
 /// facing them.
 constexpr double kAutoMapsHoleTolerance = 1e-3;
 constexpr double kAutoMapsGrazingTolerance = 0.02;
+/// Grow only above m·τ (shrinking keeps τ): the band a wandering coverage stays in.
+constexpr double kAutoMapsHysteresis = 1.5;
 
 /// One histogram: first[k] points first seen by map k (k < maps), `unseen` by none.
 struct CoverageHistogram {
