@@ -8,11 +8,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <memory>
 #include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "app/view/view_param_widgets.h"
+#include "app/view/view_session.h"
+#include "gpu/gl_context.h"
+#include "gpu/shader_library.h"
 #include "sss/maps/map_count.h"
 #include "sss/maps/radiosity_estimator.h"
 #include "sss/maps/radiosity_maps.h"
@@ -54,6 +60,32 @@ TEST(MapCountRenderer, TheBlobPlayingAt8FpsKeepsItsK) {
   for (std::size_t i = 2; i < used.size(); ++i) changes += used[i] != used[i - 1] ? 1 : 0;
   std::printf("[ maps    ] blob at 8 fps, 12 frames, K: %s(%d changes after the second frame)\n", history.c_str(), changes);
   EXPECT_LE(changes, 1) << history;
+}
+
+TEST(MapCountRenderer, UntickingAutoKeepsTheChosenKAndItsMaps) {
+  // Issue 38: the panel's "auto" box, cleared, set sss.maps to 16 (Param::autoOffValue) whatever K
+  // auto had chosen, restarting the maps. Now it sets what the renderer chose (app::autoOffValue of
+  // ViewSession::autoChoice): the passes see the same K, so the maps go on accumulating.
+  const std::unique_ptr<gpu::GlContext> context = gpu::GlContext::create(gpu::ContextOptions{});
+  const gpu::ShaderLibrary shaders;
+  app::SceneOptions options;
+  options.preset = "bunny";
+  options.sets = with(kSmallBunny, "sss.maps=auto");
+  app::ViewSession session(options, shaders);
+  session.playback().pause();
+  for (int frame = 0; frame < 4; ++frame) session.render();
+  const int k = static_cast<int>(session.renderer().radiosityMaps()->views().size());
+  const int frames = session.renderer().radiosityMaps()->frames();
+  ASSERT_NE(k, sss::kAutoMapsFirst) << "auto chose another K than the one the box used to set";
+  ASSERT_EQ(session.autoChoice("sss.maps"), std::optional<std::int64_t>(k));
+  const app::Registry::Param& maps = *session.registry().find("sss.maps");
+  EXPECT_EQ(session.set("sss.maps", app::autoOffValue(maps, session.autoChoice("sss.maps"))), "");
+  EXPECT_EQ(session.config().render.sss.maps, k);
+  session.render();
+  EXPECT_EQ(static_cast<int>(session.renderer().radiosityMaps()->views().size()), k);
+  EXPECT_EQ(session.renderer().radiosityMaps()->frames(), frames + 1) << "the maps were not restarted";
+  EXPECT_EQ(session.autoChoice("sss.map_size"), std::optional<std::int64_t>(128)) << "kSmallBunny's map size";
+  EXPECT_EQ(session.autoChoice("render.width"), std::nullopt);
 }
 
 TEST(MapCountRenderer, TheBunnySettlesOnMapsThatLeaveNoHoles) {

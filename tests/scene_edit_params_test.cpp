@@ -110,6 +110,12 @@ TEST(ParamWidgets, GroupsAndWidgetsFollowTheDeclarations) {
   EXPECT_EQ(label("material.sigma_a", "material"), "sigma_a [mm⁻¹]");
   EXPECT_EQ(label("sss.view_weight", "sss"), "view_weight");
   EXPECT_EQ(label("scale", "general"), "scale [m]");
+  // Clearing "auto" keeps what the renderer chose, within the range; Param::autoOffValue (the
+  // paper's 16 maps) only when nothing was chosen yet.
+  const Registry::Param& maps = *registry.find("sss.maps");
+  EXPECT_EQ(autoOffValue(maps, 12), 12);
+  EXPECT_EQ(autoOffValue(maps, std::nullopt), 16);
+  EXPECT_EQ(autoOffValue(maps, 100000), static_cast<std::int64_t>(maps.max));
   // Every unit is short enough for a label beside a widget (the help carries the explanation).
   for (const Registry::Param& p : registry.params()) EXPECT_LE(p.units.size(), 18u) << p.key << ": " << p.units;
 }

@@ -138,8 +138,10 @@ std::string ViewPanel::draw(ViewSession& session, sss::DebugView& debug, const V
   }
   statusLine(feedback.status, feedback.statusIsError);
   if (ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen))
-    params_.draw(session.registry(), session.config(), session.presetValues(),
-                 [&session](const std::string& key, const nlohmann::json& value) { return session.set(key, value); });
+    params_.draw(
+        session.registry(), session.config(), session.presetValues(),
+        [&session](const std::string& key, const nlohmann::json& value) { return session.set(key, value); },
+        [&session](const std::string& key) { return session.autoChoice(key); });
   ImGui::PopItemWidth();
   ImGui::End();
   return status;

@@ -96,7 +96,13 @@ void ParamWidgets::resetMenu(const Registry::Param& p, const json& value, const 
   ImGui::EndPopup();
 }
 
-void ParamWidgets::draw(const Registry& registry, const Config& config, const json& presetValues, const Setter& set) {
+std::int64_t autoOffValue(const Registry::Param& param, std::optional<std::int64_t> chosen) {
+  const double value = chosen ? static_cast<double>(*chosen) : param.autoOffValue;
+  return static_cast<std::int64_t>(std::clamp(value, param.min, param.max));
+}
+
+void ParamWidgets::draw(const Registry& registry, const Config& config, const json& presetValues, const Setter& set,
+                        const AutoChoice& autoChoice) {
   const std::vector<std::string> keys = registry.keys();
   std::vector<std::string> groups;
   for (const std::string& k : keys) {
@@ -110,7 +116,7 @@ void ParamWidgets::draw(const Registry& registry, const Config& config, const js
     if (open) {
       for (const Registry::Param& p : registry.params()) {
         if (paramGroup(p.key, keys) != group) continue;
-        drawParam(p, values.at(p.key), presetValues.value(p.key, json()), paramLabel(p, group), set);
+        drawParam(p, values.at(p.key), presetValues.value(p.key, json()), paramLabel(p, group), set, autoChoice);
       }
       ImGui::TreePop();
     }
@@ -119,7 +125,7 @@ void ParamWidgets::draw(const Registry& registry, const Config& config, const js
 }
 
 void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const json& presetValue,
-                             const std::string& label, const Setter& set) {
+                             const std::string& label, const Setter& set, const AutoChoice& autoChoice) {
   ImGui::PushID(p.key.c_str());
   if (value.is_null()) {
     ImGui::TextDisabled("%s: not in this scene", label.c_str());
@@ -151,10 +157,13 @@ void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const 
     }
     tooltip(p);
   } else if (p.type == "int" && p.acceptsAuto && value.is_string()) {
-    // "auto": the renderer chooses; clearing the checkbox gives a number to edit (Param::autoOffValue).
+    // "auto": the renderer chooses (shown beside it); clearing the checkbox keeps that choice as a
+    // number to edit, so the picture does not change (Param::autoOffValue when nothing is chosen yet).
+    const std::optional<std::int64_t> chosen = autoChoice ? autoChoice(p.key) : std::nullopt;
+    const std::string shown = label + ": auto" + (chosen ? " (" + std::to_string(*chosen) + ")" : std::string());
     bool automatic = true;
-    if (ImGui::Checkbox((label + ": auto").c_str(), &automatic) && !automatic)
-      apply(p, static_cast<std::int64_t>(std::clamp(p.autoOffValue, p.min, p.max)), set);
+    if (ImGui::Checkbox((shown + "###" + p.key).c_str(), &automatic) && !automatic)
+      apply(p, autoOffValue(p, chosen), set);
     tooltip(p);
   } else if (p.type == "int") {
     // Applied when the drag ends: each new integer may reallocate textures or restart the maps.

@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,18 +33,26 @@ ParamWidget paramWidget(const Registry::Param& param);
 /// does not just repeat the name ("maps", "map_size [texels]", "sigma_a [mm⁻¹]").
 std::string paramLabel(const Registry::Param& param, const std::string& group);
 
+/// The value an "auto" parameter takes when its checkbox is cleared: what the renderer chose, else
+/// Param::autoOffValue; within the parameter's range.
+std::int64_t autoOffValue(const Registry::Param& param, std::optional<std::int64_t> chosen);
+
 class ParamWidgets {
  public:
   /// Returns "" or the refusal of setting `key` to `value`.
   using Setter = std::function<std::string(const std::string& key, const nlohmann::json& value)>;
+  /// What the renderer chose for an int parameter now "auto" (nothing: not known).
+  using AutoChoice = std::function<std::optional<std::int64_t>(const std::string& key)>;
 
   /// Draws every parameter of `registry` with its value in `config` (inside an ImGui window);
-  /// `presetValues` (a registry snapshot) is what resetting a parameter without a default restores.
-  void draw(const Registry& registry, const Config& config, const nlohmann::json& presetValues, const Setter& set);
+  /// `presetValues` (a registry snapshot) is what resetting a parameter without a default restores;
+  /// `autoChoice`: shown beside an "auto" and kept when it is unticked (else Param::autoOffValue).
+  void draw(const Registry& registry, const Config& config, const nlohmann::json& presetValues, const Setter& set,
+            const AutoChoice& autoChoice = {});
 
  private:
   void drawParam(const Registry::Param& p, const nlohmann::json& value, const nlohmann::json& presetValue,
-                 const std::string& label, const Setter& set);
+                 const std::string& label, const Setter& set, const AutoChoice& autoChoice);
   void resetMenu(const Registry::Param& p, const nlohmann::json& value, const nlohmann::json& presetValue,
                  const Setter& set);
   void apply(const Registry::Param& p, const nlohmann::json& value, const Setter& set);

@@ -7,6 +7,7 @@
 #include "app/config/params.h"
 #include "app/config/preset_writer.h"
 #include "app/playback/scene_controls.h"
+#include "sss/maps/radiosity_maps.h"
 #include "gpu/image_io.h"
 
 namespace tallow::app {
@@ -45,6 +46,16 @@ std::string ViewSession::loadPreset(const std::string& nameOrPath) {
   } catch (const std::exception& e) {
     return e.what();
   }
+}
+
+std::optional<std::int64_t> ViewSession::autoChoice(std::string_view key) const {
+  const sss::RadiosityMaps* maps = renderer_->radiosityMaps();
+  int chosen = 0;
+  if (key == "sss.maps") chosen = renderer_->chosenMapCount(loaded_.config.scene, loaded_.config.render);
+  else if (key == "sss.map_size" && maps) chosen = maps->mapSize();
+  else if (key == "sss.light_map_size" && maps) chosen = maps->lightMapSize();
+  if (chosen <= 0) return std::nullopt;
+  return chosen;
 }
 
 std::string ViewSession::set(std::string_view key, const nlohmann::json& value) {

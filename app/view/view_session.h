@@ -4,6 +4,7 @@
 // the camera the preset started with. The panel, the mouse and scripts act on it; it renders.
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -45,6 +46,10 @@ class ViewSession {
   /// one-line reason; "" on success.
   std::string loadPreset(const std::string& nameOrPath);
 
+  /// What the renderer chose for an int parameter set to "auto" (sss.maps: K; sss.map_size,
+  /// sss.light_map_size: the sizes in use), or nothing when it chose none yet or `key` is not one of
+  /// them: unticking the panel's "auto" keeps this value (issue 38).
+  std::optional<std::int64_t> autoChoice(std::string_view key) const;
   /// Sets a parameter through the registry; returns "" or the registry's one-line refusal, in which
   /// case nothing changed.
   std::string set(std::string_view key, const nlohmann::json& value);
