@@ -1,5 +1,6 @@
 #include "geometry/gpu_dual_contouring.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <map>
@@ -20,6 +21,11 @@ std::string blockDefine() { return "BLOCK_CELLS " + std::to_string(GpuDualContou
 
 GLuint groupsFor(std::size_t items) { return static_cast<GLuint>((items + kWorkGroup - 1) / kWorkGroup); }
 
+/// Bytes of the vertex and triangle buffers for `vertices` (kTrianglesPerVertex triangles each).
+std::size_t outputBytes(std::size_t vertices) {
+  return vertices * kVertexStride + GpuDualContouring::kTrianglesPerVertex * vertices * 3 * kMeshStride;
+}
+
 }  // namespace
 
 GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis, VertexPlacement placement,
@@ -28,12 +34,10 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   if (n_ < 2) throw std::runtime_error("GpuDualContouring: need at least 2 samples per axis, got " + std::to_string(n_));
   const std::size_t cells = static_cast<std::size_t>(n_ - 1);
   blocks_ = (n_ - 1 + kBlockCells - 1) / kBlockCells;
-  vertexCapacity_ = std::min(kMaxPatchesPerCell * cells * cells * cells, kVerticesPerFaceCell * cells * cells);
-  triangleCapacity_ = kTrianglesPerVertex * vertexCapacity_;
-  const std::size_t bytes = vertexCapacity_ * kVertexStride + triangleCapacity_ * 3 * kMeshStride;
-  if (bytes > kMaxBufferBytes)
+  const std::size_t vertices = std::min(kMaxPatchesPerCell * cells * cells * cells, kVerticesPerFaceCell * cells * cells);
+  if (outputBytes(vertices) > kMaxBufferBytes)
     throw std::runtime_error("GpuDualContouring: " + std::to_string(n_) + "^3 lattice needs " +
-                             std::to_string(bytes >> 20) + " MiB of buffers, over the " +
+                             std::to_string(outputBytes(vertices) >> 20) + " MiB of buffers, over the " +
                              std::to_string(kMaxBufferBytes >> 20) + " MiB cap");
 
   const std::vector<std::string> defines{blockDefine()};
@@ -70,12 +74,6 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   activeBlocks_ = gpu::Buffer(blockCount() * sizeof(GLuint));
   drawCommand_ = gpu::Buffer(4 * sizeof(GLuint));
   vertexCounter_ = gpu::Buffer(4 * sizeof(GLuint));
-  vertexBuffer_ = gpu::Buffer(vertexCapacity_ * kVertexStride);
-  meshBuffer_ = gpu::Buffer(triangleCapacity_ * 3 * kMeshStride);
-  vertexFeedback_.bindBuffer(0, vertexBuffer_);
-  meshFeedback_.bindBuffer(0, meshBuffer_);
-  meshVao_.setAttribute(0, meshBuffer_, 0, kMeshStride, 3);
-  meshVao_.setAttribute(1, meshBuffer_, 3 * sizeof(float), kMeshStride, 3);
   vertexGenerated_ = gpu::Query(GL_PRIMITIVES_GENERATED);
   vertexWritten_ = gpu::Query(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
   meshGenerated_ = gpu::Query(GL_PRIMITIVES_GENERATED);
@@ -89,8 +87,43 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
     p->set("uBlocks", blocks_);
   }
   indexMap_.set("uSamples", n_);
+  setVertexCapacity(vertices);
+}
+
+void GpuDualContouring::setVertexCapacity(std::size_t vertices) {
+  if (vertices == 0 || outputBytes(vertices) > kMaxBufferBytes)
+    throw std::runtime_error("GpuDualContouring: buffers for " + std::to_string(vertices) + " vertices exceed the " +
+                             std::to_string(kMaxBufferBytes >> 20) + " MiB cap");
+  vertexCapacity_ = vertices;
+  triangleCapacity_ = kTrianglesPerVertex * vertices;
+  vertexBuffer_ = gpu::Buffer(vertexCapacity_ * kVertexStride);
+  meshBuffer_ = gpu::Buffer(triangleCapacity_ * 3 * kMeshStride);
+  vertexFeedback_.bindBuffer(0, vertexBuffer_);
+  meshFeedback_.bindBuffer(0, meshBuffer_);
+  meshVao_.setAttribute(0, meshBuffer_, 0, kMeshStride, 3);
+  meshVao_.setAttribute(1, meshBuffer_, 3 * sizeof(float), kMeshStride, 3);
   for (gpu::Program* p : {&indexMap_, &quads_})
     glProgramUniform1ui(p->id(), p->location("uCapacity"), static_cast<GLuint>(vertexCapacity_));
+}
+
+std::optional<bool> GpuDualContouring::overflowed(bool wait) const {
+  for (const gpu::Query* q : {&vertexGenerated_, &vertexWritten_, &meshGenerated_, &meshWritten_})
+    if (!wait && !q->resultAvailable()) return std::nullopt;
+  return vertexGenerated_.result() > vertexWritten_.result() || meshGenerated_.result() > meshWritten_.result();
+}
+
+std::size_t GpuDualContouring::generatedVertices() const { return vertexGenerated_.result(); }
+std::size_t GpuDualContouring::generatedTriangles() const { return meshGenerated_.result(); }
+
+bool GpuDualContouring::growToFit() {
+  // The triangles are counted only as far as the vertices they index were stored: after a vertex
+  // overflow the triangle count is a lower bound, so the next extraction is checked again.
+  const std::size_t need = std::max(generatedVertices(), (generatedTriangles() + kTrianglesPerVertex - 1) / kTrianglesPerVertex);
+  std::size_t vertices = vertexCapacity_;
+  while (vertices < need) vertices *= 2;
+  if (vertices == vertexCapacity_ || outputBytes(vertices) > kMaxBufferBytes) return false;
+  setVertexCapacity(vertices);
+  return true;
 }
 
 void GpuDualContouring::upload(const SampledLattice& lattice) {

@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace tallow::geometry {
@@ -96,6 +97,18 @@ class GpuDualContouring {
   std::vector<float> readLattice() const;
   /// Throws std::runtime_error (one line) when the last extraction dropped vertices or triangles.
   void checkOverflow() const;
+  /// Whether the last extract() dropped vertices or triangles (its buffers were too small): nothing
+  /// while its counts are not available yet and `wait` is false; with `wait`, waits for them.
+  std::optional<bool> overflowed(bool wait) const;
+  /// Primitives the last extraction generated, written or not (waits): what the buffers must hold.
+  std::size_t generatedVertices() const;
+  std::size_t generatedTriangles() const;
+  /// Sizes the vertex buffer for `vertices` (the triangle buffer for kTrianglesPerVertex times as
+  /// many); the next extract() fills them. Throws std::runtime_error beyond kMaxBufferBytes.
+  void setVertexCapacity(std::size_t vertices);
+  /// The smallest doubling of the capacities that holds the last extraction's generated counts
+  /// (waits for them), within kMaxBufferBytes; false when none does (the buffers stay).
+  bool growToFit();
 
   int samplesPerAxis() const { return n_; }
   std::size_t vertexCapacity() const { return vertexCapacity_; }

@@ -1,6 +1,7 @@
 #include "sss/field_objects.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -20,6 +21,7 @@ struct FieldObjects::Entry {
   double timeS = std::numeric_limits<double>::quiet_NaN();
   bool pending = false;  ///< sampled (uploaded or filled on the GPU), not extracted yet
   bool extracted = false;
+  bool checked = true;   ///< the last extraction's overflow was looked at (growOverflowed)
 
   Entry(int index, const SceneObject& object) : objectIndex(index), source(object) {}
   bool stale(double t, int r, geometry::VertexPlacement p, bool gpu) const {
@@ -114,7 +116,37 @@ void FieldObjects::extract() {
     e->dc->extract();
     e->pending = false;
     e->extracted = true;
+    e->checked = false;
   }
+}
+
+void FieldObjects::setVertexCapacity(std::size_t vertices) {
+  for (auto& e : entries_)
+    if (e->dc) e->dc->setVertexCapacity(vertices);
+}
+
+bool FieldObjects::growOverflowed(bool wait) {
+  bool grown = false;
+  for (auto& e : entries_) {
+    if (e->checked || !e->dc) continue;
+    const std::optional<bool> over = e->dc->overflowed(wait);
+    if (!over) continue;
+    e->checked = true;
+    if (!*over) continue;
+    const std::size_t made = e->dc->generatedTriangles(), held = e->dc->triangleCapacity();
+    const std::size_t vertices = e->dc->generatedVertices(), vertexRoom = e->dc->vertexCapacity();
+    if (!e->dc->growToFit()) {
+      std::fprintf(stderr, "tallow: warning: field object %d: %zu vertices and %zu triangles exceed the dual "
+                           "contouring buffers' cap; the mesh is cut\n", e->objectIndex, vertices, made);
+      continue;
+    }
+    std::fprintf(stderr, "tallow: warning: field object %d made %zu vertices and %zu triangles, its buffers held %zu "
+                         "and %zu; grown to %zu vertices, the frame drawn again\n",
+                 e->objectIndex, vertices, made, vertexRoom, held, e->dc->vertexCapacity());
+    e->pending = true;  // the lattice still holds this extraction's field
+    grown = true;
+  }
+  return grown;
 }
 
 std::size_t FieldObjects::triangleCount() const {

@@ -77,6 +77,15 @@ class FieldObjects {
   void sample(double timeS, int res, geometry::VertexPlacement placement, bool onGpu, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
   void extract();
+  /// Transform-feedback overflow on the render path (issue 38): for each field whose last
+  /// extraction is not checked yet and whose counts are available (`wait`: waits for them), when its
+  /// buffers held fewer vertices or triangles than it made, grows them to fit, says so on stderr in
+  /// one line and marks the field to be extracted again from the same lattice. True when some field
+  /// was grown: the frame that drew it was cut, and must be drawn again.
+  bool growOverflowed(bool wait);
+  /// Sizes every extractor's buffers for `vertices` (GpuDualContouring::setVertexCapacity): what
+  /// growOverflowed starts from; for tests of the overflow.
+  void setVertexCapacity(std::size_t vertices);
   /// Triangles of the last extractions. Reads a transform-feedback query, so it waits for the
   /// GPU to finish the last extraction (a stall): for stats, not for the frame loop.
   std::size_t triangleCount() const;

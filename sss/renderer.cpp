@@ -166,6 +166,9 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   if (countCoverage) takeMapCoverage(scene, userSettings);
   const RenderSettings settings = withChosenMaps(scene, userSettings);
   target_.ensure(settings.width, settings.height);
+  // A field's mesh cut by its transform-feedback buffers in an earlier frame: grown, extracted again,
+  // and everything after it drawn anew (issue 38); no wait: counts not in yet are looked at later.
+  if (FieldObjects* fields = modules_.find<FieldObjects>(); fields && fields->growOverflowed(false)) forget_ = true;
   geometry_.update(scene);
   FrameTimings t;
   t.frame = timer_.beginFrame();
@@ -300,6 +303,15 @@ std::size_t Renderer::triangleCount() const {
 std::size_t Renderer::gpuBytes() const { return target_.bytes() + geometry_.bytes() + modules_.bytes(); }
 
 const FieldObjects& Renderer::fieldObjects() const { return *modules_.find<FieldObjects>(); }
+
+FieldObjects* Renderer::mutableFieldObjects() { return modules_.find<FieldObjects>(); }
+
+bool Renderer::repairGeometry() {
+  FieldObjects* fields = modules_.find<FieldObjects>();
+  if (!fields || !fields->growOverflowed(true)) return false;
+  forget_ = true;
+  return true;
+}
 
 const RadiosityMaps* Renderer::radiosityMaps() const { return modules_.find<RadiosityMaps>(); }
 const ImageSpaceSss* Renderer::imageSpace() const { return modules_.find<ImageSpaceSss>(); }

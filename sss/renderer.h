@@ -113,6 +113,11 @@ class Renderer {
   const SceneGeometry& geometry() const { return geometry_; }
   /// The scene's field objects (their extractors and the melting meshes' static grids on the GPU).
   const FieldObjects& fieldObjects() const;
+  FieldObjects* mutableFieldObjects();
+  /// After a frame, waits for its field extractions' counts: true when a mesh overflowed its
+  /// buffers, which are grown (FieldObjects::growOverflowed); the frame, cut, must be rendered
+  /// again. render() itself checks the last frame's without waiting and then redraws everything.
+  bool repairGeometry();
   /// The image-space method's passes, once a frame has used them (null before).
   const ImageSpaceSss* imageSpace() const;
   /// The VPLs of the last frame that had them (null before).

@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -438,6 +439,34 @@ TEST_F(GpuDualContouringTest, OverflowIsReportedNotWrittenPastTheBuffers) {
     EXPECT_THROW(dc.readBack(), std::runtime_error);
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   }
+}
+
+TEST_F(GpuDualContouringTest, BuffersGrowToFitWhatTheLastExtractionMade) {
+  // Issue 38: the render path looks at each extraction's counts (without waiting, or waiting after
+  // a capture's frame) and grows the buffers that were too small. The 16³ checkerboard changes sign
+  // on every lattice edge, so each interior edge (4 cells around it: 3·15·14² of them) makes one
+  // quad: 17640 triangles, over the 16200 the buffers start with.
+  constexpr int n = 16;
+  constexpr std::size_t kTriangles = 2 * 3 * (n - 1) * (n - 2) * (n - 2);
+  GpuDualContouring dc(library_, n);
+  dc.upload(checkerboard(n));
+  dc.extract();
+  ASSERT_EQ(dc.overflowed(true), std::optional<bool>(true));
+  // Its cells hold more patches than the vertex buffer has room for (the triangles are counted
+  // only for stored vertices: 6428 of them), so it may take more than one growth.
+  int growths = 0;
+  while (dc.overflowed(true) == std::optional<bool>(true) && growths < 4) {
+    ASSERT_TRUE(dc.growToFit());
+    ++growths;
+    dc.extract();
+  }
+  std::printf("[ dc ] 16^3 checkerboard: %d growth(s) to %zu vertices, %zu triangles\n", growths, dc.vertexCapacity(),
+              dc.triangleCapacity());
+  EXPECT_EQ(dc.overflowed(true), std::optional<bool>(false));
+  EXPECT_FALSE(dc.growToFit()) << "what the last extraction made fits: nothing to grow";
+  EXPECT_EQ(dc.triangleCount(), kTriangles);
+  EXPECT_EQ(dc.readBack().triangles.size(), kTriangles);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 }  // namespace

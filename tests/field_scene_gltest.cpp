@@ -16,6 +16,7 @@
 #include "geometry/blob_field.h"
 #include "geometry/candle_field.h"
 #include "gpu/gl_context.h"
+#include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/renderer.h"
 #include "support/render_support.h"
@@ -78,6 +79,34 @@ TEST(FieldSceneGL, BlobPresetRendersFiniteAndCountsExtractedTriangles) {
   const std::size_t after = s.renderer().triangleCount();
   std::printf("[ field ] blob at 32^3: %zu extracted triangles\n", after - before);
   EXPECT_GT(after, before + 100);
+}
+
+TEST(FieldSceneGL, AMeshThatOutgrowsItsBuffersIsGrownAndDrawnAgain) {
+  // Issue 38: transform-feedback overflow on the render path. The blob's extractor is given room
+  // for 64 vertices; the frame at t = 1 cuts its mesh. A capture waits for the counts after the
+  // frame (Renderer::repairGeometry: grown, to be drawn again); a window's next frame looks at them
+  // without waiting and draws everything again. Either way the frame after is the whole mesh, the
+  // triangles of a renderer that never overflowed.
+  test::PresetSession fresh("blob", fieldSceneSets());
+  const gpu::Image whole = render(fresh, 1.0);
+  const std::size_t triangles = fresh.renderer().fieldObjects().triangleCount();
+  ASSERT_GT(triangles, 1000u);
+  for (const bool wait : {true, false}) {
+    test::PresetSession s("blob", fieldSceneSets());
+    render(s, 0.0);
+    s.renderer().mutableFieldObjects()->setVertexCapacity(64);
+    render(s, 1.0);
+    EXPECT_LE(s.renderer().fieldObjects().triangleCount(), 3u * 64u) << "the mesh was cut";
+    if (wait) {
+      EXPECT_TRUE(s.renderer().repairGeometry());
+    } else {
+      glFinish();  // the counts are in; render() looks at them without waiting
+    }
+    const gpu::Image again = render(s, 1.0);
+    EXPECT_EQ(s.renderer().fieldObjects().triangleCount(), triangles) << (wait ? "capture" : "window");
+    EXPECT_FALSE(s.renderer().repairGeometry()) << "the grown buffers held the frame drawn again";
+    EXPECT_EQ(differingPixels(again, whole, 0, 0, kWidth, kHeight), 0) << (wait ? "capture" : "window");
+  }
 }
 
 TEST(FieldSceneGL, CandlePresetRendersFiniteWithTheLightAtTheFlame) {

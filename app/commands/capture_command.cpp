@@ -238,15 +238,21 @@ int runCapture(const CaptureOptions& options) {
       try {
         // With --accumulate N the frame's time is rendered N times (a paused window's progressive
         // accumulation); its GPU timings are the sums over those renders, like its wall time.
-        frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
-        for (int a = 1; a < options.accumulate; ++a) {
-          // The GPU times of the renders so far are read before the sum is taken (a wait, as the
-          // accumulated frame is timed whole).
-          renderer.resolveTimings(frame.gpu);
-          sss::FrameTimings more = renderer.render(config.scene, config.render, frame.timeS);
-          renderer.resolveTimings(more);
-          addTimings(frame.gpu, more);
-        }
+        const auto renderFrame = [&] {
+          frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
+          for (int a = 1; a < options.accumulate; ++a) {
+            // The GPU times of the renders so far are read before the sum is taken (a wait, as the
+            // accumulated frame is timed whole).
+            renderer.resolveTimings(frame.gpu);
+            sss::FrameTimings more = renderer.render(config.scene, config.render, frame.timeS);
+            renderer.resolveTimings(more);
+            addTimings(frame.gpu, more);
+          }
+        };
+        renderFrame();
+        // A field's mesh that overflowed its buffers: grown, and the frame drawn again whole
+        // (each growth at least doubles them, up to their cap).
+        while (renderer.repairGeometry()) renderFrame();
       } catch (const std::invalid_argument& e) {
         if (where.empty()) throw;
         throw InputError(where + ": " + e.what());
