@@ -146,7 +146,7 @@ def k_section(work):
     add("that sees it within 60° of its normal; the renderer reads the counts back behind a fence (no frame")
     add("waits) and takes the fewest of the nested Halton directions that leave at most 0.1% more of the pixels")
     add("or VPLs with no map, and 2% more of the pixels with fewer than two facing maps, than the most maps it")
-    add("tried (16 at first, doubled up to 32 while either is exceeded 1.5 times). A change of K restarts the maps. Sizes `auto` in")
+    add("tried (16 at first, doubled up to 32 while either is exceeded 1.5 times). A change of K restarts the maps that are new (the nested directions keep theirs). Sizes `auto` in")
     add("both rows; the first frame of a bench is the one after the warm-up, with what the chooser knew then.")
     add("")
     add("| scale [m] | sss.maps | K used | first frame rel. RMSE | converged rel. RMSE | upper / lower | fireflies (ref.) | median wall per accumulating frame [ms] | reference ε |")

@@ -751,6 +751,45 @@ TEST(MapHistory, AStillAfterMotionConvergesToTheHistoryFreeStill) {
   EXPECT_LT(error, 1e-3);
 }
 
+/// The largest frame count (alpha) of each map layer's texels.
+std::vector<float> layerFrames(const gpu::Texture& maps) {
+  const std::vector<glm::vec4> texels = readLayers(maps);
+  const std::size_t perLayer = static_cast<std::size_t>(maps.width()) * maps.height();
+  std::vector<float> most(static_cast<std::size_t>(maps.depth()), 0.0f);
+  for (std::size_t i = 0; i < texels.size(); ++i) most[i / perLayer] = std::max(most[i / perLayer], texels[i].a);
+  return most;
+}
+
+TEST(MapHistory, AChangeOfKKeepsTheMapsWhoseDirectionsStay) {
+  // Issue 38: the Halton directions are nested, so when K alone changes (auto K's choice, or the
+  // user's) the first min(K, K') maps keep their sums and only the new ones start. The count starts
+  // over so that the new maps get sss.frames frames of their own.
+  PresetSession s("bunny", {"render.width=64", "render.height=48", "sss.maps=8", "sss.samples=1",
+                            "sss.map_size=64", "sss.light_map_size=128", "vpl.count=0", "sss.frames=32"});
+  for (int f = 0; f < 4; ++f) s.render(0.0);
+  const std::vector<sss::MapView> before = s.renderer().radiosityMaps()->views();
+  s.settings().sss.maps = 12;
+  s.render(0.0);
+  const sss::RadiosityMaps& maps = *s.renderer().radiosityMaps();
+  ASSERT_EQ(maps.views().size(), 12u);
+  for (std::size_t i = 0; i < before.size(); ++i)
+    EXPECT_EQ(maps.views()[i].direction, before[i].direction) << "map " << i;
+  EXPECT_EQ(maps.frames(), 1);
+  std::vector<float> most = layerFrames(maps.maps());
+  for (int layer = 0; layer < 12; ++layer)
+    EXPECT_FLOAT_EQ(most[static_cast<std::size_t>(layer)], layer < 8 ? 5.0f : 1.0f) << "map " << layer;
+  // Fewer maps: the first six keep theirs.
+  s.settings().sss.maps = 6;
+  s.render(0.0);
+  most = layerFrames(s.renderer().radiosityMaps()->maps());
+  ASSERT_EQ(most.size(), 6u);
+  for (float m : most) EXPECT_FLOAT_EQ(m, 6.0f);
+  // Anything else restarts them all.
+  s.settings().sss.samples = 2;
+  s.render(0.0);
+  for (float m : layerFrames(s.renderer().radiosityMaps()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
+}
+
 TEST(MapHistory, ASettingThatChangesTheEstimateRestartsTheMaps) {
   PresetSession s("blob", movingBlobSets(4));
   for (int f = 0; f < 3; ++f) s.render(1.0);

@@ -27,7 +27,8 @@
 // 38: with m = 1 the blob at 8 fps went 16, 12, …, 12, 24, 12 as the grazing share at K = 12
 // touched 2.1% for one frame, and each change restarts the maps and reallocates them). The band is
 // on growth only: a tighter shrink (τ / m) took the bunny from 12 maps to 14 for 1% of its pixels.
-// A change of K restarts the maps (like any change of sss.maps).
+// A change of K in a frame where nothing moved keeps the first min(K, K') maps and starts only the
+// new ones (MapsUpdate::Resize; with sss.history=0 it restarts them all, as the paper does).
 #include <array>
 #include <cstdint>
 #include <map>

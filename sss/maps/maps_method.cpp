@@ -88,16 +88,28 @@ void RadiosityMapsPass::run(FrameContext& context, bool changed) {
   // Any other input (materials, K, the estimator's settings, a bench's restart) restarts the maps,
   // and so does Renderer::invalidate (as if nothing had run); so does a change of sss.history or
   // sss.history_move themselves, like any setting of the maps.
-  Fingerprint key;
-  for (const std::string& name : io(context.state).reads)
-    if (isInput(name) && name != "time" && name != "scene.light_placement" && name != "scene.light_intensity")
-      key << inputFingerprint(name, context.state);
+  // A change of K alone (sss.maps=auto's choice, or the user's) in a frame where nothing moved keeps
+  // the maps that stay: the Halton directions are nested (MapsUpdate::Resize).
+  Fingerprint key, keyBesideK, motion;
+  for (const std::string& name : io(context.state).reads) {
+    if (!isInput(name)) continue;
+    if (name == "time" || name == "scene.light_placement" || name == "scene.light_intensity") {
+      motion << inputFingerprint(name, context.state);
+      continue;
+    }
+    key << inputFingerprint(name, context.state);
+    if (name != "sss.maps") keyBesideK << inputFingerprint(name, context.state);
+  }
   const bool sameSettings = key.value() == restartKey_;
+  const bool onlyK = !sameSettings && keyBesideK.value() == restartKeyBesideK_ && motion.value() == motionKey_;
   restartKey_ = key.value();
+  restartKeyBesideK_ = keyBesideK.value();
+  motionKey_ = motion.value();
+  // sss.history = 0 is the paper's restart at every change, a change of K among them.
+  const bool keep = !context.invalidated && context.settings().sss.history > 0;
   MapsUpdate update = MapsUpdate::Accumulate;
   if (changed)
-    update = sameSettings && !context.invalidated && context.settings().sss.history > 0 ? MapsUpdate::Reuse
-                                                                                         : MapsUpdate::Restart;
+    update = keep && onlyK ? MapsUpdate::Resize : keep && sameSettings ? MapsUpdate::Reuse : MapsUpdate::Restart;
   RadiosityMaps& m = maps(context);
   m.renderMaps(context.scene(), context.settings(), context.geometry, update);
   frames_ = m.frames();

@@ -42,6 +42,8 @@ class RadiosityMapsPass final : public Pass {
  private:
   int frames_ = 0;  ///< frames accumulated since the last restart (RadiosityMaps::frames)
   std::uint64_t restartKey_ = 0;  ///< fingerprint of the inputs whose change restarts the maps
+  std::uint64_t restartKeyBesideK_ = 0;  ///< the same without sss.maps (a change of K alone: MapsUpdate::Resize)
+  std::uint64_t motionKey_ = 0;          ///< time and the lights' placement and intensity
 };
 
 /// vpl: the VPLs of the paper's §3.4 from this frame's maps; again every frame when vpl.stable is off.

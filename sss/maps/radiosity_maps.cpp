@@ -432,6 +432,10 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   }
   const int size = mapSize_;
   const bool history = s.history > 0;
+  // Resize keeps maps made for these views at this size.
+  if (update == MapsUpdate::Resize &&
+      (frames_ == 0 || !viewsHold(sphere_) || maps_.width() != size || views_.empty() || !maps_.id()))
+    update = MapsUpdate::Restart;
   // Reuse needs the views it was made with and the last frame's G-buffer at this K and size.
   if (update == MapsUpdate::Reuse &&
       (!history || frames_ == 0 || !viewsHold(sphere_) || views_.size() != static_cast<std::size_t>(k) ||
@@ -447,7 +451,17 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   const bool stillAfterMotion = update == MapsUpdate::Accumulate && lastUpdate_ == MapsUpdate::Reuse && history &&
                                 frames_ > 0;
   lastUpdate_ = update;
-  const bool fresh = frames_ == 0;  // new views, maps emptied
+  // Resize: the kept maps' sums, copied into the new array below (level 0; the mipmaps follow).
+  gpu::Texture keptMaps;
+  int keptLayers = 0;
+  if (update == MapsUpdate::Resize) {
+    keptLayers = std::min(k, maps_.depth());
+    keptMaps = std::move(maps_);
+    maps_ = gpu::Texture();
+    frames_ = 0;
+  }
+  const bool resize = keptLayers > 0;
+  const bool fresh = frames_ == 0;  // new views, maps emptied (a resize then copies the kept ones back)
   ensureMapTargets(k, size);
   const bool compute = s.computeGather;
   // The maps' G-buffer (x_o, n_o per texel, with depth): the compute gather's input, and what the
@@ -519,9 +533,9 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   }
 
   if (fresh) {
-    viewSphere_ = sphere_;
-    views_ = scene.mapDirections.empty() ? radiosityMapViews(k, sphere_.centre, sphere_.radius)
-                                         : radiosityMapViews(scene.mapDirections, sphere_.centre, sphere_.radius);
+    if (!resize) viewSphere_ = sphere_;  // a resize keeps the kept maps' views
+    views_ = scene.mapDirections.empty() ? radiosityMapViews(k, viewSphere_.centre, viewSphere_.radius)
+                                         : radiosityMapViews(scene.mapDirections, viewSphere_.centre, viewSphere_.radius);
     std::vector<glm::mat4> layers;
     // algorithm1.glsl's MapViewGpu; the orthographic depth spans 2·radius (radiosityMapViews).
     struct CameraView {
@@ -537,6 +551,9 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     mapLayerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
     cameraViews_ = gpu::Buffer(camera.size() * sizeof(CameraView), camera.data());
     glClearTexImage(maps_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    if (resize)
+      glCopyImageSubData(keptMaps.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, maps_.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0,
+                         size, size, keptLayers);
     if (gbuffer) {
       // The maps' G-buffer with depth: also the visibility of Algorithm 1.
       drawMapGBuffer();

@@ -89,6 +89,9 @@ enum class MapsUpdate {
   Restart,     ///< new views, the maps emptied (the paper, whenever light or geometry change)
   Reuse,       ///< the geometry or a light moved: each texel keeps, trims or resets its sum by
                ///< sss.history (maps/history.comp), then N samples; a restart when it cannot
+  Resize,      ///< K alone changed, nothing moved, sss.history > 0: the first min(K, K') maps keep their sums (the
+               ///< Halton directions are nested), the new ones start empty; the count starts over
+               ///< so that the new maps get sss.frames frames; a restart when the views do not hold
 };
 
 class RadiosityMaps {
