@@ -788,6 +788,15 @@ TEST(MapHistory, AChangeOfKKeepsTheMapsWhoseDirectionsStay) {
   s.settings().sss.samples = 2;
   s.render(0.0);
   for (float m : layerFrames(s.renderer().radiosityMaps()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
+  // So does a change of K while a still after motion fades its kept frames out: kept maps would
+  // hold what is left of them for good.
+  s.render(0.0);
+  s.scene().lights[0].intensity *= 0.9f;  // the light dims: a reuse (as a flame's flicker)
+  s.render(0.0);
+  s.render(0.0);  // the still starts, its fade with it
+  s.settings().sss.maps = 8;
+  s.render(0.0);
+  for (float m : layerFrames(s.renderer().radiosityMaps()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
 }
 
 TEST(MapHistory, ASettingThatChangesTheEstimateRestartsTheMaps) {

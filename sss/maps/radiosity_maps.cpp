@@ -432,9 +432,10 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   }
   const int size = mapSize_;
   const bool history = s.history > 0;
-  // Resize keeps maps made for these views at this size.
-  if (update == MapsUpdate::Resize &&
-      (frames_ == 0 || !viewsHold(sphere_) || maps_.width() != size || views_.empty() || !maps_.id()))
+  // Resize keeps maps made for these views at this size; not while a still's fade is under way (its
+  // source is per map, and the kept maps would hold what is left of the lagged frames for good).
+  if (update == MapsUpdate::Resize && (frames_ == 0 || !viewsHold(sphere_) || maps_.width() != size ||
+                                       views_.empty() || !maps_.id() || fadeFrames_ > 0))
     update = MapsUpdate::Restart;
   // Reuse needs the views it was made with and the last frame's G-buffer at this K and size.
   if (update == MapsUpdate::Reuse &&
