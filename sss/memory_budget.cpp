@@ -17,6 +17,7 @@
 #include "sss/peers/image_space.h"
 #include "sss/peers/sslpv.h"
 #include "sss/shadow_pass.h"
+#include "sss/still_average.h"
 
 namespace tallow::sss {
 namespace {
@@ -205,7 +206,7 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
     add("local exposure", "render.local_exposure>0", LocalExposure::bytesFor(settings.width, settings.height));
   if (settings.aaSamples > 1)  // sss/still_average.h: the still's three means
     add("still average", "render.aa=" + std::to_string(settings.aaSamples),
-        2 * screen(GL_RGBA32F, settings.width, settings.height) + screen(GL_R32F, settings.width, settings.height));
+        StillAverage::bytesFor(settings.width, settings.height));
   return m;
 }
 

@@ -7,6 +7,11 @@ namespace tallow::sss {
 StillAverage::StillAverage(const gpu::ShaderLibrary& shaders)
     : program_(shaders, {{{GL_COMPUTE_SHADER, "camera/still_average.comp"}}}) {}
 
+std::size_t StillAverage::bytesFor(int width, int height) {
+  return 2 * gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, 1) +
+         gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_R32F, width, height, 1, 1);
+}
+
 void StillAverage::add(const gpu::Texture& radiance, const gpu::Texture& translucent, double weight, bool first) {
   if (!(weight > 0.0)) throw std::logic_error("still average: a frame's weight must be positive");
   if (translucent.width() != radiance.width() || translucent.height() != radiance.height())

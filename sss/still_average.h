@@ -31,6 +31,8 @@ class StillAverage {
   /// Frames in the current mean (0 before the first).
   int frames() const { return frames_; }
   std::size_t bytes() const { return rest_.bytes() + translucentSum_.bytes() + translucentShare_.bytes(); }
+  /// What bytes() is once a width × height frame was added (the memory budget's figure).
+  static std::size_t bytesFor(int width, int height);
 
  private:
   gpu::Program program_;

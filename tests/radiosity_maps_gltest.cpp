@@ -17,6 +17,7 @@
 #include "geometry/ply_writer.h"
 #include "geometry/primitives.h"
 #include "gpu/gl_objects.h"
+#include "gpu/image_error.h"
 #include "sss/maps/radiosity_estimator.h"
 #include "sss/maps/radiosity_maps.h"
 #include "support/dipole_totals.h"
@@ -698,17 +699,11 @@ TEST(MapHistory, WhileTheBlobMovesTexelsKeepAtMostHistoryFramesAndResetWhereTheS
   EXPECT_EQ(restart.renderer().radiosityMaps()->frames(), 1);
 }
 
-/// Relative RMSE of a against b over the pixels of `mask` (non-zero), all bands.
+/// gpu::imageError's relative RMSE of a against b over the pixels of `mask` (non-zero).
 double relativeRmse(const gpu::Image& a, const gpu::Image& b, const std::vector<std::uint8_t>& mask) {
-  double d2 = 0.0, b2 = 0.0;
-  for (std::size_t i = 0; i < mask.size(); ++i)
-    if (mask[i])
-      for (int c = 0; c < 3; ++c) {
-        const double d = a.pixels[i][c] - b.pixels[i][c];
-        d2 += d * d;
-        b2 += static_cast<double>(b.pixels[i][c]) * b.pixels[i][c];
-      }
-  return std::sqrt(d2 / b2);
+  gpu::Image objects(b.width, b.height);
+  for (std::size_t i = 0; i < mask.size(); ++i) objects.pixels[i].a = mask[i] ? 1.0f : 0.0f;
+  return gpu::imageError(a, b, objects).relRmse;
 }
 
 TEST(MapHistory, AStillAfterMotionConvergesToTheHistoryFreeStill) {
