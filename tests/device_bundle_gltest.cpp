@@ -149,7 +149,7 @@ TEST(DeviceBundle, QuickBenchFromAnEmptiedEnvironmentWritesBothReports) {
   const auto marble = sss::MaterialTable::load(fs::path(TALLOW_TEST_DATA_DIR) / "materials.csv").find("Marble");
   ASSERT_TRUE(marble.has_value());
   EXPECT_DOUBLE_EQ(gather["flops_per_sample"].get<double>(),
-                   flops::countGatherFlops(*marble, sss::BssrdfModel::Directional, 8).flopsMean);
+                   flops::countGatherFlops(*marble, sss::BssrdfModel::Directional, 8).directional.flopsMean);
   for (const char* pass : {"fragment", "compute"}) {
     ASSERT_TRUE(gather["runs"].contains(pass)) << pass;
     EXPECT_GT(gather["runs"][pass]["evaluations_per_s"].get<double>(), 0.0);

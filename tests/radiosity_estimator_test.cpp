@@ -211,7 +211,7 @@ TEST(RadiosityEstimator, BacklitThickSlabIsUnbiasedAndTheSecondDensityCutsItsSpr
   ScatteredRadiosityInput in = slabInput(m, BssrdfModel::Standard, 16);
   in.no = {0, 0, -1};
   const auto estimate = [&](double share) {
-    in.backlitShare = share;
+    in.pointShare = share;
     glm::dvec3 sum(0.0), sum2(0.0);
     constexpr int kTexels = 2000;
     for (int t = 0; t < kTexels; ++t) {
@@ -285,9 +285,8 @@ TEST(RadiosityEstimator, MissesAndBackFacingHitsContributeNothing) {
   EXPECT_THROW(estimateScatteredRadiosity<double>(in, planeLookup), std::invalid_argument);
 }
 
-TEST(RadiosityEstimator, SamplesPlanarPointsInTheGivenBasisWithTheBandsOwnSigmaTr) {
+TEST(RadiosityEstimator, SamplesPlanarPointsInTheGivenBasis) {
   ScatteredRadiosityInput in = slabInput(fromTable("Ketchup"), BssrdfModel::Standard, 4000);
-  in.bandSampling = BandSampling::PerBand;
   in.xo = {1.0, 2.0, 3.0};
   in.t1 = glm::normalize(glm::dvec3(1.0, 1.0, 0.0));
   in.t2 = glm::dvec3(0.0, 0.0, 1.0);
@@ -299,14 +298,11 @@ TEST(RadiosityEstimator, SamplesPlanarPointsInTheGivenBasisWithTheBandsOwnSigmaT
     return std::nullopt;
   };
   estimateScatteredRadiosity<double>(in, record);
-  ASSERT_EQ(radii.size(), 12000u);
-  // Band c's distances are exponential with rate σ_tr of band c: mean 1/σ_tr (Eq. 12).
+  ASSERT_EQ(radii.size(), 4000u);  // one look-up per sample, shared by the bands
+  // The sampling rate is σ_tr of Eq. 10 wherever σ_a > 0 (the bound only acts without absorption).
   for (int c = 0; c < 3; ++c) {
-    double mean = 0.0;
-    for (int j = 0; j < 4000; ++j) mean += radii[size_t(c * 4000 + j)] / 4000.0;
     const double sigmaTr = bssrdfCoefficients(in.material.sigma_a[c], in.material.sigma_s[c], 0.0, 1.3).sigma_tr;
     EXPECT_DOUBLE_EQ(samplingSigmaTr(in.material.sigma_a[c], in.material.sigma_s[c], 0.0, 1.3), sigmaTr);
-    EXPECT_NEAR(mean * sigmaTr, 1.0, 4.0 / std::sqrt(4000.0)) << c;
   }
 }
 
@@ -637,18 +633,13 @@ double bandErrorCorrelation(ScatteredRadiosityInput in, int texels, int a, int b
 }
 
 TEST(SharedSampling, TheBandsErrorsAreCorrelatedGreyNoise) {
-  // Per band (§3.1) each band's error comes from its own random stream: uncorrelated (|ρ| within
-  // 3/√texels of 0). Shared, every band sees the same x_j: positively correlated errors, which a
-  // pixel shows as a change of brightness rather than of hue.
+  // Every band sees the same x_j: positively correlated errors, which a pixel shows as a change of
+  // brightness rather than of hue (§3.1's own stream per band would give |ρ| within 3/√texels of 0).
   constexpr int kTexels = 600;
   ScatteredRadiosityInput in = slabInput(fromTable("Marble"), BssrdfModel::Directional, 4);
   for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{0, 2}}) {
-    in.bandSampling = BandSampling::PerBand;
-    const double perBand = bandErrorCorrelation(in, kTexels, a, b);
-    in.bandSampling = BandSampling::Shared;
     const double shared = bandErrorCorrelation(in, kTexels, a, b);
-    std::printf("[ bands ] Marble, N = 4: ρ(%d, %d) per band %+.3f, shared %+.3f\n", a, b, perBand, shared);
-    EXPECT_LT(std::abs(perBand), 3.0 / std::sqrt(double(kTexels))) << a << b;
+    std::printf("[ bands ] Marble, N = 4: ρ(%d, %d) shared %+.3f\n", a, b, shared);
     EXPECT_GT(shared, 0.5) << a << b;
   }
 }
@@ -788,11 +779,12 @@ void expectFiniteEverywhere(const char* precision) {
       const ScatteredRadiosity b = estimateScatteredRadiosity<Real>(in, planeLookup);
       EXPECT_TRUE(finite(b.B) && finite(b.standardError));
     }
-    // x_i far from x_o (r huge) whatever x_j is.
+    // x_i far from x_o (r huge) whatever x_j is: the texel saw a surface 100 m up the light's view
+    // (x_i keeps x_j's place across the view and takes the texel's plane, as on the GPU).
     {
       ScatteredRadiosityInput in = slabInput(fromTable("Marble"), model, n);
       const auto farAway = [](const glm::dvec3& xj) -> std::optional<LightGBufferHit> {
-        return LightGBufferHit{xj + glm::dvec3(1e5, 0, 0), {0, 0, 1}};
+        return LightGBufferHit{xj + glm::dvec3(0, 0, 1e5), {0, 0, 1}};
       };
       const ScatteredRadiosity b = estimateScatteredRadiosity<Real>(in, farAway);
       EXPECT_TRUE(finite(b.B));

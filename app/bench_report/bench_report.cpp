@@ -203,7 +203,7 @@ json figures(const json& rows, const json& device, const flops::GatherFlops& flo
     if (!r) continue;
     const json& m = (*r)["metrics"];
     const double evals = m["evaluations_per_s"].get<double>();
-    const double rate = evals * flops.flopsMean;
+    const double rate = evals * flops.directional.flopsMean;
     gathers[name] = {{"maps_ms", m["maps_ms"]},
                      {"evaluations_per_s", evals},
                      {"flops_per_s", rate},
@@ -212,9 +212,11 @@ json figures(const json& rows, const json& device, const flops::GatherFlops& flo
   if (gathers.contains("fragment") && gathers.contains("compute"))
     gathers["fragment_over_compute_time"] =
         gathers["fragment"]["maps_ms"].get<double>() / gathers["compute"]["maps_ms"].get<double>();
-  f["gather"] = {{"flops_per_sample", flops.flopsMean},
-                 {"flops_counted", {{"add", flops.addMean}, {"mul", flops.mulMean}, {"div", flops.divMean},
-                                    {"special", flops.specialMean}, {"other_not_flops", flops.otherMean}}},
+  const flops::LoopFlops& d = flops.directional;
+  f["gather"] = {{"flops_per_sample", d.flopsMean},
+                 {"flops_per_sample_point_light", flops.point.flopsMean},
+                 {"flops_counted", {{"add", d.addMean}, {"mul", d.mulMean}, {"div", d.divMean},
+                                    {"special", d.specialMean}, {"other_not_flops", d.otherMean}}},
                  {"fp32_peak_tflops", peak},
                  {"runs", gathers}};
 
@@ -358,17 +360,22 @@ json buildReport(const fs::path& runs, const flops::GatherFlops& flops, const js
     }
   }
 
-  json counted = {{"samples", flops.samples},
-                  {"flops_mean", flops.flopsMean},
-                  {"flops_per_shared_sample", flops.flopsPerSharedSample},
-                  {"flops_shared_min", flops.flopsSharedMin},
-                  {"flops_shared_max", flops.flopsSharedMax},
-                  {"add", flops.addMean},
-                  {"mul", flops.mulMean},
-                  {"div", flops.divMean},
-                  {"special", flops.specialMean},
-                  {"other_not_flops", flops.otherMean},
-                  {"max_difference_to_float", flops.maxValueDifference}};
+  const auto loop = [](const flops::LoopFlops& l) {
+    return json{{"samples", l.samples},
+                {"flops_mean", l.flopsMean},
+                {"flops_per_shared_sample", l.flopsPerSharedSample},
+                {"flops_shared_min", l.flopsSharedMin},
+                {"flops_shared_max", l.flopsSharedMax},
+                {"flops_per_texel", l.flopsPerTexel},
+                {"add", l.addMean},
+                {"mul", l.mulMean},
+                {"div", l.divMean},
+                {"special", l.specialMean},
+                {"other_not_flops", l.otherMean}};
+  };
+  json counted = loop(flops.directional);
+  counted["point_light"] = loop(flops.point);
+  counted["max_difference_to_float"] = flops.maxValueDifference;
   std::size_t ok = 0, failed = 0, skipped = 0, glErrors = 0;
   for (const json& r : rows) {
     (r["status"] == "ok" ? ok : r["status"] == "skipped" ? skipped : failed)++;

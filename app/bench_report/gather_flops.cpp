@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "app/bench_report/counted_real.h"
 #include "gpu/glsl_shared.h"  // TALLOW_FN and GLM's GLSL vocabulary; no OpenGL
+#include "sss/render_settings.h"
 
 static_assert(sizeof(unsigned) == 4, "GLSL uint literals (123u) must be 32-bit unsigned int in C++");
 
@@ -18,7 +18,7 @@ using real = CountedReal;
 #include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
-#include "app/bench_report/gather_sample.inc"
+#include "app/bench_report/gather_flops_scene.inc"
 }  // namespace tallow::flops::counted
 
 namespace tallow::flops::plain {
@@ -27,50 +27,64 @@ using real = float;
 #include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
-#include "app/bench_report/gather_sample.inc"
+#include "app/bench_report/gather_flops_scene.inc"
 }  // namespace tallow::flops::plain
 
 namespace tallow::flops {
 
-GatherFlops countGatherFlops(const sss::Material& material, sss::BssrdfModel model, int samplesPerBand) {
-  if (samplesPerBand < 1) throw std::invalid_argument("countGatherFlops: samplesPerBand must be at least 1");
-  const int modelId = static_cast<int>(model);
-  static_assert(static_cast<int>(sss::BssrdfModel::Directional) == plain::BSSRDF_MODEL_DIRECTIONAL);
-  // Per band and texel, outside the sample loop in gather.glsl: not part of a sample's count.
-  const auto coefficients = [&](auto make, int band) {
-    return make(material.sigma_a[band], material.sigma_s[band], material.g[band], material.eta);
-  };
-  const auto countedK = [](auto&&... a) { return counted::bssrdfCoefficients(a...); };
-  const auto plainK = [](auto&&... a) { return plain::bssrdfCoefficients(a...); };
-  const auto kc0 = coefficients(countedK, 0), kc1 = coefficients(countedK, 1), kc2 = coefficients(countedK, 2);
-  const auto kp0 = coefficients(plainK, 0), kp1 = coefficients(plainK, 1), kp2 = coefficients(plainK, 2);
-  const counted::real3 sigmaTrC(counted::sssSamplingSigmaTr(kc0), counted::sssSamplingSigmaTr(kc1),
-                                counted::sssSamplingSigmaTr(kc2));
-  const plain::real3 sigmaTrP(plain::sssSamplingSigmaTr(kp0), plain::sssSamplingSigmaTr(kp1),
-                              plain::sssSamplingSigmaTr(kp2));
-  GatherFlops out;
+std::vector<OpCounts>& marks() {
+  thread_local std::vector<OpCounts> m;
+  return m;
+}
+
+namespace {
+
+OpCounts minus(const OpCounts& a, const OpCounts& b) {
+  return {a.add - b.add, a.mul - b.mul, a.div - b.div, a.special - b.special, a.other - b.other};
+}
+
+/// One loop counted: the samples are what lies between successive look-ups of the last N marks
+/// (each: the rest of sample j and the draw of sample j + 1), the texel's share the remainder.
+LoopFlops countLoop(int kind, int model, const sss::Material& m, int samples, float share, double& maxDifference) {
+  reset();
+  marks().clear();
+  const counted::real3 value = counted::sssFlopsGather(kind, model, m, samples, share);
+  const OpCounts total = counts();
+  const std::vector<OpCounts> at = marks();
+  const plain::real3 expected = plain::sssFlopsGather(kind, model, m, samples, share);
+  for (int band = 0; band < 3; ++band)
+    maxDifference = std::max(maxDifference, std::abs(double(value[band].value()) - double(expected[band])));
+  if (at.size() < static_cast<std::size_t>(samples))
+    throw std::logic_error("countGatherFlops: fewer look-ups than samples");
+  LoopFlops out;
   out.flopsSharedMin = ~std::uint64_t{0};
   double add = 0, mul = 0, div = 0, special = 0, other = 0, flops = 0;
-  const auto n = static_cast<std::uint32_t>(samplesPerBand);
-  for (std::uint32_t j = 0; j < n; ++j) {
-    reset();
-    const counted::real3 value = counted::gatherPlaneSample(modelId, kc0, kc1, kc2, sigmaTrC, j, n);
-    const OpCounts c = counts();
-    const plain::real3 expected = plain::gatherPlaneSample(modelId, kp0, kp1, kp2, sigmaTrP, j, n);
-    for (int band = 0; band < 3; ++band)
-      out.maxValueDifference =
-          std::max(out.maxValueDifference, std::abs(double(value[band].value()) - double(expected[band])));
+  for (std::size_t i = at.size() - static_cast<std::size_t>(samples) + 1; i < at.size(); ++i) {
+    const OpCounts c = minus(at[i], at[i - 1]);
     add += double(c.add), mul += double(c.mul), div += double(c.div), special += double(c.special);
     other += double(c.other), flops += double(c.flops());
     out.flopsSharedMin = std::min(out.flopsSharedMin, c.flops());
     out.flopsSharedMax = std::max(out.flopsSharedMax, c.flops());
     ++out.samples;
   }
-  // Per sample and band: the shared sample's count over its three bands.
   const double perBand = 3.0 * out.samples;
   out.flopsPerSharedSample = flops / out.samples;
   out.flopsMean = flops / perBand, out.addMean = add / perBand, out.mulMean = mul / perBand;
   out.divMean = div / perBand, out.specialMean = special / perBand, out.otherMean = other / perBand;
+  out.flopsPerTexel = double(total.flops()) - samples * out.flopsPerSharedSample;
+  return out;
+}
+
+}  // namespace
+
+GatherFlops countGatherFlops(const sss::Material& material, sss::BssrdfModel model, int samplesPerBand) {
+  if (samplesPerBand < 2) throw std::invalid_argument("countGatherFlops: samplesPerBand must be at least 2");
+  const int modelId = static_cast<int>(model);
+  static_assert(static_cast<int>(sss::BssrdfModel::Directional) == plain::BSSRDF_MODEL_DIRECTIONAL);
+  const float share = sss::RenderSettings{}.sss.pointShare;
+  GatherFlops out;
+  out.directional = countLoop(0, modelId, material, samplesPerBand, share, out.maxValueDifference);
+  out.point = countLoop(1, modelId, material, samplesPerBand, share, out.maxValueDifference);
   return out;
 }
 

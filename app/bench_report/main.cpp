@@ -58,13 +58,18 @@ int main(int argc, char** argv) {
     const tallow::flops::GatherFlops flops =
         tallow::flops::countGatherFlops(*material, tallow::sss::BssrdfModel::Directional, kSamplesPerBand);
     if (flopsOnly) {
+      const auto loop = [](const tallow::flops::LoopFlops& l) {
+        return nlohmann::json{{"samples", l.samples},
+                              {"flops_mean", l.flopsMean},
+                              {"flops_per_shared_sample", l.flopsPerSharedSample},
+                              {"flops_shared_min", l.flopsSharedMin},
+                              {"flops_shared_max", l.flopsSharedMax},
+                              {"flops_per_texel", l.flopsPerTexel}};
+      };
       std::printf("%s\n", nlohmann::json({{"material", kGatherMaterial},
                                           {"model", "directional"},
-                                          {"samples", flops.samples},
-                                          {"flops_mean", flops.flopsMean},
-                                          {"flops_per_shared_sample", flops.flopsPerSharedSample},
-                                          {"flops_shared_min", flops.flopsSharedMin},
-                                          {"flops_shared_max", flops.flopsSharedMax},
+                                          {"directional_light", loop(flops.directional)},
+                                          {"point_light", loop(flops.point)},
                                           {"max_difference_to_float", flops.maxValueDifference}})
                               .dump(2)
                               .c_str());

@@ -181,18 +181,23 @@ std::string renderMarkdown(const json& r) {
   // --- Gather, dual contouring, occupancy ---------------------------------------------------------
   md << "## The gather's arithmetic\n\n";
   const json& c = r["gather_flops"];
-  md << "Per sample, the lines gather.glsl runs for a sample that reaches S_d, drawn once for the three "
-        "colour bands (sssDrawSharedSample, sssPointOnTexel, then sssRadiosityTerm with the directional dipole "
-        "per band), run in C++ with a scalar that counts each operation (app/bench_report/counted_real.h): **"
+  md << "Per sample, the lines the GPU runs for a sample that reaches S_d (shaders/maps/gather_loop.glsl: "
+        "sssDrawSharedSample once for the three colour bands, x_i on the texel's plane, the projected-area "
+        "division, then sssRadiosityTerm with the directional dipole per band), run in C++ with a scalar that "
+        "counts each operation (app/bench_report/counted_real.h). A directional light: **"
      << fmt(c["flops_per_shared_sample"], 1) << " FLOPs** for the three bands (min "
      << c["flops_shared_min"].get<long long>() << ", max " << c["flops_shared_max"].get<long long>() << " over "
      << c["samples"].get<int>() << " samples), that is per sample and band " << fmt(c["add"], 1) << " add/sub, "
      << fmt(c["mul"], 1) << " mul, " << fmt(c["div"], 1) << " div, " << fmt(c["special"], 1)
      << " special functions (exp, log, sqrt, sin, cos) = **" << fmt(c["flops_mean"], 1) << " FLOPs** ("
-     << fmt(c["other_not_flops"], 1) << " comparisons, min/max/abs not counted). The gather's "
-        "own glue (G-buffer look-up, normalising its normal, the projected-area division) is not counted, "
-        "and `probe maps` counts every sample as an evaluation, samples that miss the object included: the "
-        "rate below is FLOPs of full samples × all samples, an upper bound of the arithmetic done.\n\n";
+     << fmt(c["other_not_flops"], 1) << " comparisons, min/max/abs not counted).";
+  if (c.contains("point_light"))
+    md << " A point light in a cup (the stereographic look-up and area ratio): **"
+       << fmt(c["point_light"]["flops_per_shared_sample"], 1) << " FLOPs** for the three bands, **"
+       << fmt(c["point_light"]["flops_mean"], 1) << "** per band.";
+  md << " Only the G-buffer look-ups (texture fetches) are not counted, and `probe maps` counts every sample "
+        "as an evaluation, samples that miss the object included: the rate below is FLOPs of full "
+        "directional samples × all samples, an upper bound of the arithmetic done.\n\n";
   md << "| gather | maps [ms] | samples/s | FLOP/s | of FP32 peak |\n|---|---:|---:|---:|---:|\n";
   for (const char* name : {"fragment", "compute"})
     if (g["runs"].contains(name)) {

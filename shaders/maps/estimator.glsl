@@ -107,18 +107,6 @@ struct SssSample {
   real weight;
 };
 
-TALLOW_FN SssSample sssDrawSample(real3 xo, real3 t1, real3 t2, real sigmaTr, uint x, uint y, uint map, uint frame,
-                                  uint band, uint sampleIndex) {
-  real xi1 = sssRandom(x, y, map, frame, band, sampleIndex, 0u);
-  real xi2 = sssRandom(x, y, map, frame, band, sampleIndex, 1u);
-  SssRadialSample rs = sssSampleRadial(xi1, xi2, sigmaTr);
-  SssSample s;
-  s.r = rs.r;
-  s.alpha = rs.alpha;
-  s.weight = rs.weight;
-  s.xj = sssPlanarSamplePoint(xo, t1, t2, rs.r, rs.alpha);
-  return s;
-}
 
 // --- Point lights: a second distance density and their mixture (issue 17) ---------------------
 // Eq. 12's exponential puts almost no samples where a point light inside the object lights x_o from

@@ -10,6 +10,14 @@
 
 #include "gpu/glsl_shared.h"  // TALLOW_FN and GLM's GLSL vocabulary; no OpenGL
 
+namespace tallow::sss {
+/// What gather_loop.glsl's accessors read on the CPU (sss/maps/gather_scene_cpu.inc).
+struct GatherSceneCpu {
+  const ScatteredRadiosityInput* input;
+  const LightGBufferLookup* directionalLookup;
+};
+}  // namespace tallow::sss
+
 // The shared files, compiled once per precision as in sss/bssrdf.cpp. Besides real.glsl's types,
 // the estimator needs GLSL's `uint`: std::uint32_t, whose arithmetic wraps modulo 2³² as GLSL's does.
 static_assert(sizeof(unsigned) == 4, "GLSL uint literals (123u) must be 32-bit unsigned int in C++");
@@ -20,6 +28,7 @@ using real = float;
 #include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
+#include "sss/maps/gather_scene_cpu.inc"
 }  // namespace tallow::sss::estimator_f32
 
 namespace tallow::sss::estimator_f64 {
@@ -28,6 +37,7 @@ using real = double;
 #include "gpu/glsl_real_types.inc"
 #include "sss/bssrdf/bssrdf_models.inc"
 #include "shaders/maps/estimator.glsl"
+#include "sss/maps/gather_scene_cpu.inc"
 }  // namespace tallow::sss::estimator_f64
 
 namespace tallow::sss {
@@ -35,44 +45,6 @@ namespace tallow::sss {
 static_assert(static_cast<int>(BssrdfModel::Standard) == estimator_f64::BSSRDF_MODEL_STANDARD);
 static_assert(static_cast<int>(BssrdfModel::Directional) == estimator_f64::BSSRDF_MODEL_DIRECTIONAL);
 static_assert(static_cast<int>(BssrdfModel::PhotonBeamDiffusion) == estimator_f64::BSSRDF_MODEL_PBD);
-
-namespace {
-
-/// The types and the namespace of one instantiation.
-template <class Real>
-struct Shared;
-template <>
-struct Shared<float> {
-  using Vec = glm::vec3;
-  using Sample = estimator_f32::SssSample;
-  template <class F>
-  static decltype(auto) call(F&& f) {
-    namespace s = estimator_f32;
-    return f(s::BssrdfCoefficients{}, [](auto&&... a) { return s::bssrdfCoefficients(a...); },
-             [](auto&&... a) { return s::sssSamplingSigmaTr(a...); },
-             [](auto&&... a) { return s::sssDrawSample(a...); },
-             [](auto&&... a) { return s::sssDrawSharedSample(a...); },
-             [](auto&&... a) { return s::sssRadiosityTerm(a...); },
-             [](auto&&... a) { return s::sssRadiosityFromSum(a...); });
-  }
-};
-template <>
-struct Shared<double> {
-  using Vec = glm::dvec3;
-  using Sample = estimator_f64::SssSample;
-  template <class F>
-  static decltype(auto) call(F&& f) {
-    namespace s = estimator_f64;
-    return f(s::BssrdfCoefficients{}, [](auto&&... a) { return s::bssrdfCoefficients(a...); },
-             [](auto&&... a) { return s::sssSamplingSigmaTr(a...); },
-             [](auto&&... a) { return s::sssDrawSample(a...); },
-             [](auto&&... a) { return s::sssDrawSharedSample(a...); },
-             [](auto&&... a) { return s::sssRadiosityTerm(a...); },
-             [](auto&&... a) { return s::sssRadiosityFromSum(a...); });
-  }
-};
-
-}  // namespace
 
 std::uint32_t radiosityRandomBits(const RandomStreamId& id) {
   return estimator_f64::sssRandomBits(id.x, id.y, id.map, id.frame, id.band, id.sample, id.dim);
@@ -181,58 +153,17 @@ ScatteredRadiosity estimateScatteredRadiosity(const ScatteredRadiosityInput& in,
                                 std::to_string(in.samples) + ")");
   const RadiosityMaterial& m = in.material;
   for (int c = 0; c < 3; ++c) {
-    BssrdfConfig check{in.xo, in.no, in.toLight, in.xo, in.no, m.sigma_a[c], m.sigma_s[c], m.g[c], m.eta};
+    BssrdfConfig check{in.xo, in.no, in.directional ? in.toLight : in.no, in.xo, in.no, m.sigma_a[c], m.sigma_s[c],
+                       m.g[c], m.eta};
     validateBssrdfConfig(check);
   }
-  using Vec = typename Shared<Real>::Vec;
-  return Shared<Real>::call([&](auto, auto coefficients, auto samplingSigmaTr, auto drawSample, auto drawShared,
-                                auto term, auto fromSum) {
-    const Vec xo(in.xo), no(in.no), wl(in.toLight), t1(in.t1), t2(in.t2);
-    using K = decltype(coefficients(Real(0), Real(0), Real(0), Real(0)));
-    std::array<K, 3> k;
-    Vec sigmaTr;
-    for (int c = 0; c < 3; ++c) {
-      k[c] = coefficients(Real(m.sigma_a[c]), Real(m.sigma_s[c]), Real(m.g[c]), Real(m.eta));
-      sigmaTr[c] = samplingSigmaTr(k[c]);
-    }
-    glm::dvec3 sum(0.0), sumSquares(0.0);
-    const auto add = [&](int c, const typename Shared<Real>::Sample& s, const LightGBufferHit& hit) {
-      const double t = static_cast<double>(
-          term(static_cast<int>(in.model), Vec(hit.xi), Vec(hit.ni), wl, xo, no, k[c], s.weight));
-      sum[c] += t;
-      sumSquares[c] += t * t;
-    };
-    const auto n = static_cast<std::uint32_t>(in.samples);
-    if (in.bandSampling == BandSampling::Shared) {
-      // A directional light: a second density only where x_o lies behind the lit surface.
-      double radius = 0.0;
-      if (in.backlitShare > 0.0)
-        if (const std::optional<LightGBufferHit> front = lookup(in.xo))
-          radius = backlitRadius(glm::dot(front->xi - in.xo, in.toLight),
-                                 static_cast<double>(std::min({sigmaTr.x, sigmaTr.y, sigmaTr.z})));
-      const Real share = Real(radius > 0.0 ? in.backlitShare : 0.0);
-      for (std::uint32_t j = 0; j < n; ++j) {
-        const auto s = drawShared(xo, t1, t2, sigmaTr, Real(radius), share, in.texelX, in.texelY, in.map, in.frame, j, n);
-        if (const std::optional<LightGBufferHit> hit = lookup(glm::dvec3(s.xj)))
-          for (int c = 0; c < 3; ++c) add(c, s, *hit);
-      }
-    } else {
-      for (int c = 0; c < 3; ++c)
-        for (std::uint32_t j = 0; j < n; ++j) {
-          const auto s = drawSample(xo, t1, t2, sigmaTr[c], in.texelX, in.texelY, in.map, in.frame,
-                                    static_cast<std::uint32_t>(c), j);
-          if (const std::optional<LightGBufferHit> hit = lookup(glm::dvec3(s.xj))) add(c, s, *hit);
-        }
-    }
-    ScatteredRadiosity out;
-    for (int c = 0; c < 3; ++c) {
-      const double scale = static_cast<double>(fromSum(Real(1), Real(in.irradiance[c]), 1));  // π E
-      out.B[c] = static_cast<double>(fromSum(Real(sum[c]), Real(in.irradiance[c]), in.samples));
-      const double variance = n > 1 ? std::max(0.0, (sumSquares[c] - sum[c] * sum[c] / n) / (n - 1)) : 0.0;
-      out.standardError[c] = scale * std::sqrt(variance / n);
-    }
-    return out;
-  });
+  for (const GatherPointLight& l : in.pointLights)
+    if (!l.lookup) throw std::invalid_argument("estimateScatteredRadiosity: a point light has no G-buffer look-up");
+  const GatherSceneCpu scene{&in, &lookup};
+  if constexpr (std::is_same_v<Real, float>)
+    return estimator_f32::sssEstimateOnCpu(scene);
+  else
+    return estimator_f64::sssEstimateOnCpu(scene);
 }
 template ScatteredRadiosity estimateScatteredRadiosity<float>(const ScatteredRadiosityInput&,
                                                               const LightGBufferLookup&);

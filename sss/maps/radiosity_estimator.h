@@ -1,15 +1,17 @@
 #pragma once
 // The Monte Carlo estimator of scattered radiosity (Dal Corso et al., radiosity maps, Eq. 9) on the
-// CPU: the C++ face of shaders/maps/estimator.glsl, which the scattered-radiosity map pass compiles
-// as GLSL. The per-sample logic (random numbers, Eq. 12 sampling, x_j, Eqs. 13–14, the term of
-// Eq. 9, Halton camera directions) lives in that file and runs here in float or double by the same
-// lines; this side only loops over the samples. Formulas: docs/radiosity-maps.md, "The estimator".
+// CPU: the C++ face of shaders/maps/estimator.glsl (the per-sample pieces: random numbers, Eq. 12
+// sampling, x_j, Eqs. 13–14, the term of Eq. 9, Halton camera directions) and of
+// shaders/maps/gather_loop.glsl (the loops over lights and samples), which the map passes compile
+// as GLSL; here they run in float or double by the same lines, with the light G-buffers given as
+// look-up functions. Formulas: docs/radiosity-maps.md, "The estimator".
 // No OpenGL here.
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "sss/bssrdf/bssrdf.h"
 
@@ -113,34 +115,43 @@ struct RadiosityMaterial {
   double eta = 1.3;
 };
 
-/// What the light's G-buffer holds at the texel x_j falls in: the surface point x_i [mm] and its
-/// outward unit normal n_i.
+/// What a light G-buffer texel saw: the surface point [mm] and its outward normal. The gather puts
+/// x_i on the texel's tangent plane along the look-up line (texelPlane), as on the GPU.
 struct LightGBufferHit {
   glm::dvec3 xi, ni;
 };
-/// x_j [mm] → the G-buffer entry, or nothing (no surface there: the sample contributes 0).
+/// A directional light's G-buffer: the texel over x_j [mm], or nothing (no surface of x_o's object
+/// there: the sample contributes 0).
 using LightGBufferLookup = std::function<std::optional<LightGBufferHit>(const glm::dvec3& xj)>;
+/// A point light's cube G-buffer: the texel in `direction` (not unit) from the light, or nothing.
+using PointGBufferLookup = std::function<std::optional<LightGBufferHit>(const glm::dvec3& direction)>;
 
-/// How the three colour bands' samples are drawn: one pattern for all three (the gather's, issue
-/// 17: sssDrawSharedSample, each band weighted by the mixture), or each band its own with its σ_tr
-/// (the paper's §3.1: sssDrawSample, stream band c) — kept to measure against.
-enum class BandSampling { Shared, PerBand };
+struct GatherPointLight {
+  glm::dvec3 position{0.0};   ///< x_ℓ [mm]
+  glm::dvec3 intensity{0.0};  ///< I per band [W/sr]
+  PointGBufferLookup lookup;
+};
 
 struct ScatteredRadiosityInput {
   glm::dvec3 xo{0.0}, no{0.0, 0.0, 1.0};  ///< the point of emergence [mm] and its outward normal
-  glm::dvec3 toLight{0.0, 0.0, 1.0};      ///< unit, toward the directional light (= −ω_ℓ)
-  glm::dvec3 irradiance{1.0};             ///< E per band [W/m²] on a surface facing the light (= L_ℓ)
   RadiosityMaterial material;
   BssrdfModel model = BssrdfModel::Directional;
-  int samples = 1;  ///< N per band (≥ 1); with BandSampling::Shared the bands share the N
-  BandSampling bandSampling = BandSampling::Shared;
-  /// The random stream: texel (x, y) of map k at accumulated frame F (band and sample are looped).
+  int samples = 1;  ///< N, shared by the three bands (sssDrawSharedSample)
+  /// The random stream: texel (x, y) of map k at accumulated frame F (the sample is looped).
   std::uint32_t texelX = 0, texelY = 0, map = 0, frame = 0;
-  /// Orthonormal basis of the sampling plane (the light's view plane for a directional light).
+  /// The directional light, looked up by the `lookup` argument; `directional` = false leaves it out.
+  bool directional = true;
+  glm::dvec3 toLight{0.0, 0.0, 1.0};  ///< unit, toward the directional light (= −ω_ℓ)
+  glm::dvec3 irradiance{1.0};         ///< E per band [W/m²] on a surface facing the light (= L_ℓ)
+  /// Orthonormal basis of the light's view plane (the directional light's sampling plane).
   glm::dvec3 t1{1.0, 0.0, 0.0}, t2{0.0, 1.0, 0.0};
-  /// Shared pattern: the second density's share where x_o is backlit (sss.point_share, as the
-  /// gather): the depth of lookup(x_o) ahead of x_o along toLight gives sssBacklitRadius; 0: Eq. 12 alone.
-  double backlitShare = 0.0;
+  /// Point lights, each with its cube G-buffer (samples on x_o's tangent plane).
+  std::vector<GatherPointLight> pointLights;
+  /// The gather's settings, as sss.* on the GPU: sss.stereographic, sss.projected_area,
+  /// sss.texel_plane, and sss.point_share (the second density's share: point lights, and a
+  /// directional light where x_o is backlit; 0: Eq. 12 alone).
+  bool stereographic = true, projectedArea = true, texelPlane = true;
+  double pointShare = 0.0;
 };
 
 struct ScatteredRadiosity {
@@ -148,15 +159,14 @@ struct ScatteredRadiosity {
   glm::dvec3 standardError{0.0};  ///< the sample standard deviation of the N terms × π E/N, per band
 };
 
-/// B_N(x_o) = (π E/N) Σ_j S_d(x_i, −ω_ℓ; x_o) F_t(−ω_ℓ) cos θ_ℓ r_j/p(r_j, α_j)   (Eq. 9)
-/// for each colour band c. BandSampling::Shared (as the gather): sample j is drawn once for the three
-/// bands by drawSharedSample (directional light: share 0), looked up once, and each band adds its
-/// term with the mixture's weight. BandSampling::PerBand (§3.1): sample j of band c draws (r, α) of
-/// Eq. 12 with band c's σ_tr from stream (texelX, texelY, map, frame, c, j). Either way
-/// x_j = x_o + r(cos α t1 + sin α t2), (x_i, n_i) = lookup(x_j), and the term is the shared code's
-/// (0 on a miss or where n_i faces away from the light). Real selects the instantiation of the shared code. Throws
-/// std::invalid_argument for samples < 1, or where validateBssrdfConfig rejects a band's
-/// (x_o, n_o, toLight, material): non-unit n_o or toLight, invalid coefficients or η.
+/// B_N(x_o) of Eq. 9 per colour band from every light of `input`, computed by the GPU's own loops
+/// (shaders/maps/gather_loop.glsl, compiled here in float or double: Real): sample j is drawn once
+/// for the three bands (sssDrawSharedSample), looked up once, and each band adds its term with the
+/// mixture's weight; the projected-area ratio, the stereographic look-up and x_i on the texel's
+/// plane as the settings say. The directional light's G-buffer is `lookup`. The standard error adds
+/// the lights' variances as if independent (exact for one light). Throws std::invalid_argument for
+/// samples < 1, or where validateBssrdfConfig rejects a band's (x_o, n_o, toLight, material):
+/// non-unit n_o or toLight, invalid coefficients or η.
 template <class Real>
 ScatteredRadiosity estimateScatteredRadiosity(const ScatteredRadiosityInput& input, const LightGBufferLookup& lookup);
 extern template ScatteredRadiosity estimateScatteredRadiosity<float>(const ScatteredRadiosityInput&,

@@ -140,6 +140,9 @@ class RadiosityMaps {
   /// The point lights' G-buffers: one cube per point light (scene order of the point lights).
   const gpu::Texture& pointPositions() const { return pointPosition_; }
   const gpu::Texture& pointNormals() const { return pointNormal_; }
+  /// The maps' G-buffer (sss.gather=compute or a history): x_o [m] with its slot + 1, and n_o.
+  const gpu::Texture& mapPositions() const { return mapPosition_; }
+  const gpu::Texture& mapNormals() const { return mapNormal_; }
   std::size_t bytes() const;
   /// Everything gather.glsl reads (lights, G-buffers on texture units firstUnit … firstUnit + 3,
   /// materials, model, N, the frame seed), for a program that includes it: the map passes, and
