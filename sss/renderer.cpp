@@ -101,6 +101,7 @@ std::vector<std::pair<Pass*, Renderer::Due>> Renderer::schedule(const FrameState
                                                                 std::map<std::string, Stamp>& resources) const {
   std::vector<std::pair<Pass*, Due>> out;
   for (Pass* pass : plan_.passes(state)) {
+    if (held_.count(pass->name()) && records_.count(pass)) continue;  // a pass that never ran has nothing to keep
     const PassIo io = pass->io(state);
     const Due d = due(*pass, state, io, resources);
     if (d == Due::No) continue;
@@ -216,6 +217,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
     for (const std::string& w : io.writes) before[w] = resources_[w];
   }
   forget_ = false;
+  held_.clear();
   shown_ = context.shown;
   if (context.countMapCoverage) coverageProbe_.end();
   // No wait here: this frame's GPU times are read later (resolveTimings, latestTimings).
@@ -249,7 +251,14 @@ const FrameTimings& Renderer::latestTimings() {
 
 void Renderer::restartAccumulation() { ++accumulation_; }
 
-void Renderer::invalidate() { forget_ = true; }
+void Renderer::invalidate() {
+  forget_ = true;
+  mapCountChooser_ = MapCountChooser{};
+  coverageProbe_.forget();
+  vplCoverage_.reset();
+  vplCoverageMaps_ = 0;
+  lastMapCoverage_.reset();
+}
 
 const gpu::Texture& Renderer::shown() const { return shown_ ? *shown_ : target_.radiance; }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <set>
 #include <memory>
 #include <optional>
 #include <string>
@@ -134,9 +135,13 @@ class Renderer {
   /// passes after them too) and restarts the no-cache seeds. For `tallow bench`, which times the
   /// frames after a warm-up frame.
   void restartAccumulation();
-  /// Forgets what every pass made: the next frame runs each planned pass as if it never ran
-  /// (tests compare it with the frame the declared inputs give).
+  /// Forgets what every pass made and what the renderer chose from earlier frames (sss.maps=auto's
+  /// K and the coverage it measured): the next frame is drawn as a new renderer draws its first.
   void invalidate();
+  /// The next frame skips these passes (by name), keeping what they last wrote, whatever their
+  /// inputs say (one that never ran runs: it has nothing to keep): tests/frame_invalidation_gltest.cpp
+  /// observes which passes a change needs.
+  void hold(std::set<std::string> passes) { held_ = std::move(passes); }
 
  private:
   /// A resource's counts: `epoch` moves when its writer restarted (ran with changed inputs),
@@ -175,6 +180,7 @@ class Renderer {
   int stillFrame_ = 0;    ///< render.aa: frames since the still began (FrameContext::stillFrame)
   int accumulation_ = 0;  ///< restartAccumulation() calls: the input "accumulation"
   bool forget_ = false;   ///< invalidate(): every pass of the next frame runs as changed
+  std::set<std::string> held_;  ///< hold(): passes the next frame skips
   DisplayPass display_;
   /// The coverage target (r translucent, g seen by a map, b opaque, a halved under the flame).
   gpu::Image readCoverage() const;

@@ -811,6 +811,35 @@ TEST(MapHistory, AStillAfterMotionConvergesToTheHistoryFreeStill) {
   EXPECT_LT(error, 1e-3);
 }
 
+TEST(MapHistory, AStillAfterMotionFadesTheHistoryAlsoWhenItHoldsSssFramesAlready) {
+  // sss.frames ≤ sss.history: after the motion the maps may hold sss.frames frames or more of kept
+  // history, so no frame would be due by the count; the still must start all the same and fade the
+  // kept frames out (found by FrameInvalidation at the defaults: sss.frames = 1, history 8).
+  const std::vector<std::string> common = {"render.width=64", "render.height=48", "render.aa=1", "field.res=48",
+                                           "sss.maps=4", "sss.map_size=64", "sss.light_map_size=128",
+                                           "vpl.count=0", "render.flame=false", "sss.frames=4"};
+  std::vector<std::string> kept = common, free = common;
+  kept.push_back("sss.history=8");
+  free.push_back("sss.history=0");
+  PresetSession history("candle", kept), restart("candle", free);
+  const double start = history.scene().startS;
+  for (int f = 0; f < 8; ++f) {
+    history.render(start + 0.25 * f);
+    restart.render(start + 0.25 * f);
+  }
+  ASSERT_GE(history.renderer().radiosityMaps()->frames(), 4) << "the motion left sss.frames frames of history";
+  const double pause = start + 0.25 * 7;
+  gpu::Image still, freeStill;
+  for (int f = 0; f < 6; ++f) {
+    still = history.render(pause);
+    freeStill = restart.render(pause);
+  }
+  EXPECT_EQ(history.renderer().radiosityMaps()->frames(), 4);
+  const double error = relativeRmse(still, freeStill, restart.renderer().translucentMask());
+  std::printf("[ history ] sss.frames = 4, history 8: the still after motion vs the history-free still %.5f\n", error);
+  EXPECT_LT(error, 1e-3);
+}
+
 /// The largest frame count (alpha) of each map layer's texels.
 std::vector<float> layerFrames(const gpu::Texture& maps) {
   const std::vector<glm::vec4> texels = readLayers(maps);

@@ -44,6 +44,11 @@ void MapCoverageProbe::end() {
   current_ = -1;
 }
 
+void MapCoverageProbe::forget() {
+  for (Slot& s : ring_) s.fence = gpu::Fence();
+  current_ = -1;
+}
+
 std::optional<MapCoverageCounts> MapCoverageProbe::poll() {
   Slot* newest = nullptr;
   for (Slot& s : ring_) {

@@ -25,6 +25,8 @@ class MapCoverageProbe {
   void end();
   /// The newest counts the GPU has finished, without waiting; older finished ones are dropped.
   std::optional<MapCoverageCounts> poll();
+  /// Drops the counts still in flight (Renderer::invalidate: nothing from before reaches the chooser).
+  void forget();
 
  private:
   struct Slot {

@@ -77,7 +77,11 @@ PassIo RadiosityMapsPass::io(const FrameState&) const {
   return io;
 }
 
-bool RadiosityMapsPass::runsAgain(const FrameState& state) const { return frames_ < state.settings.sss.frames; }
+bool RadiosityMapsPass::runsAgain(const FrameState& state) const {
+  // A history kept through motion leaves the estimate in the still that follows (issue 38), also
+  // when it holds sss.frames frames already (sss.frames ≤ sss.history).
+  return frames_ < state.settings.sss.frames || stillPending_;
+}
 
 void RadiosityMapsPass::run(FrameContext& context, bool changed) {
   // What may change without a restart when sss.history > 0: the geometry and the light G-buffers
@@ -113,6 +117,7 @@ void RadiosityMapsPass::run(FrameContext& context, bool changed) {
   RadiosityMaps& m = maps(context);
   m.renderMaps(context.scene(), context.settings(), context.geometry, update);
   frames_ = m.frames();
+  stillPending_ = m.stillPending();
 }
 
 // --- vpl --------------------------------------------------------------------------------------------

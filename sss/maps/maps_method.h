@@ -41,6 +41,7 @@ class RadiosityMapsPass final : public Pass {
 
  private:
   int frames_ = 0;  ///< frames accumulated since the last restart (RadiosityMaps::frames)
+  bool stillPending_ = false;  ///< RadiosityMaps::stillPending after the last run
   std::uint64_t restartKey_ = 0;  ///< fingerprint of the inputs whose change restarts the maps
   std::uint64_t restartKeyBesideK_ = 0;  ///< the same without sss.maps (a change of K alone: MapsUpdate::Resize)
   std::uint64_t motionKey_ = 0;          ///< time and the lights' placement and intensity

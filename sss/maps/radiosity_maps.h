@@ -126,6 +126,9 @@ class RadiosityMaps {
   /// reuse, at most sss.history; per texel, the maps' alpha holds its own count, with the fading
   /// frames' share while a still after motion starts)
   int frames() const { return frames_; }
+  /// The last frame kept a history (a reuse while something moved): the next frame in which nothing
+  /// moves starts the still that fades it out, whatever sss.frames says is accumulated.
+  bool stillPending() const { return lastUpdate_ == MapsUpdate::Reuse && frames_ > 0; }
   int lightMapSize() const { return lightMapSize_; }  ///< the light G-buffers' size in use
   int mapSize() const { return mapSize_; }  ///< the maps' size in use (sss.map_size, or what auto chose)
   const std::vector<MapView>& views() const { return views_; }
