@@ -1,6 +1,7 @@
 #include "gpu/shader_library.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -55,13 +56,29 @@ std::string_view trimLeft(std::string_view s) {
   return s;
 }
 
-/// `#include "x"` → x, otherwise empty.
-std::optional<std::string> includeTarget(std::string_view line) {
+/// `#include "x"` → x; `#include NAME` → the path NAME is defined as (`NAME "x"` among the defines:
+/// a variant of a shader that includes the file its define names); otherwise empty. An undefined
+/// NAME, or one not defined as a quoted path, is an error at `file`:`lineNo`.
+std::optional<std::string> includeTarget(std::string_view line, const std::vector<std::string>& defines,
+                                         const std::string& file, int lineNo) {
   line = trimLeft(line);
   if (!line.starts_with('#')) return std::nullopt;
   line = trimLeft(line.substr(1));
   if (!line.starts_with("include")) return std::nullopt;
   line = trimLeft(line.substr(7));
+  if (!line.empty() && line.front() != '"') {
+    std::size_t end = 0;
+    while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '_')) ++end;
+    const std::string name(line.substr(0, end));
+    for (const std::string& d : defines) {
+      if (d.rfind(name + " ", 0) != 0) continue;
+      const std::string value(trimLeft(std::string_view(d).substr(name.size() + 1)));
+      if (value.size() >= 2 && value.front() == '"' && value.back() == '"') return value.substr(1, value.size() - 2);
+    }
+    throw ShaderError(file + ":" + std::to_string(lineNo) + ": error: #include " + name +
+                          ": no define gives it a quoted path",
+                      "");
+  }
   if (line.size() < 2 || line.front() != '"') return std::nullopt;
   const auto close = line.find('"', 1);
   if (close == std::string_view::npos) return std::nullopt;
@@ -70,7 +87,7 @@ std::optional<std::string> includeTarget(std::string_view line) {
 }  // namespace
 
 void ShaderLibrary::expandInto(std::string_view path, ExpandedSource& out, std::vector<std::string>& stack,
-                               std::vector<std::string>& seen) const {
+                               std::vector<std::string>& seen, const std::vector<std::string>& defines) const {
   const std::string name(path);
   if (std::find(stack.begin(), stack.end(), name) != stack.end())
     throw ShaderError(name + ":1: error: #include cycle", "");
@@ -87,9 +104,9 @@ void ShaderLibrary::expandInto(std::string_view path, ExpandedSource& out, std::
   bool wroteLine = false;
   while (std::getline(lines, line)) {
     ++lineNo;
-    if (auto target = includeTarget(line)) {
+    if (auto target = includeTarget(line, defines, name, lineNo)) {
       try {
-        expandInto(*target, out, stack, seen);
+        expandInto(*target, out, stack, seen, defines);
       } catch (const ShaderError& e) {
         if (std::string(e.what()).find("no such shader file") != std::string::npos ||
             std::string(e.what()).find("cannot read") != std::string::npos)
@@ -112,7 +129,7 @@ void ShaderLibrary::expandInto(std::string_view path, ExpandedSource& out, std::
 ExpandedSource ShaderLibrary::expand(std::string_view path, const std::vector<std::string>& defines) const {
   ExpandedSource body;
   std::vector<std::string> stack, seen;
-  expandInto(path, body, stack, seen);
+  expandInto(path, body, stack, seen, defines);
 
   // `#version` must come first: keep it, then the defines, then resume at line 2 of the file.
   const auto firstNewline = body.text.find('\n');
@@ -123,7 +140,9 @@ ExpandedSource ShaderLibrary::expand(std::string_view path, const std::vector<st
   out.files = std::move(body.files);
   out.text = first + "\n";
   out.text += "#define TALLOW_GLSL 1\n";
-  for (const std::string& d : defines) out.text += "#define " + d + "\n";
+  // A define whose value is a quoted path names a file for `#include NAME` only (GLSL has no strings).
+  for (const std::string& d : defines)
+    if (d.empty() || d.back() != '"') out.text += "#define " + d + "\n";
   out.text += "#line 2 0\n";
   out.text += body.text.substr(firstNewline + 1);
   return out;

@@ -1,8 +1,9 @@
 #pragma once
 // Shader sources: the files under shaders/, embedded at build time or read from an override folder
 // (--shader-dir, for live editing). Expands `#include "path"` (relative to shaders/, each file at
-// most once per stage), prepends `#define`s after `#version`, and maps the driver's error log back
-// to `file:line: message`.
+// most once per stage) and `#include NAME` where a define gives NAME a quoted path (a variant that
+// includes its own file), prepends `#define`s after `#version`, and maps the driver's error log
+// back to `file:line: message`.
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -41,7 +42,7 @@ class ShaderLibrary {
 
  private:
   void expandInto(std::string_view path, ExpandedSource& out, std::vector<std::string>& stack,
-                  std::vector<std::string>& seen) const;
+                  std::vector<std::string>& seen, const std::vector<std::string>& defines) const;
   std::optional<std::filesystem::path> overrideDir_;
 };
 

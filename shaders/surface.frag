@@ -1,23 +1,22 @@
 #version 450 core
 // The camera pass. Opaque surfaces: Lambertian reflection of every light (with shadows), of the
-// VPLs' emergent light (vpl_receiver.glsl, Eq. 15) and of a uniform ambient sky,
+// light the frame's method carries to the surroundings (surroundingsIrradiance: the VPLs' emergent light,
+// Eq. 15) and of a uniform ambient sky,
 // L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces (uTranslucent):
 // L = F_t(ω_o)/π · B (Eq. 5) + F_r(ω_o) · L_env(mirror direction): the specular reflection,
 // Fresnel-weighted, of the environment map, or of the uniform ambient sky when there is none
 // (render.specular off: no reflection), and of the candles' flames (flame/flame_mirror.glsl: the
 // melt pool's flat surface shows the flame). A candle's pool has its own material
-// (materials/slots.glsl): its η here, its BSSRDF in the gather. The frame's method (sss/translucency_method.h,
-// uTranslucentMethod) gives B: Algorithm 1 over the radiosity maps, the gather per pixel (no-cache),
-// the image-space accumulation at this pixel (peers/image_space/result.glsl) or B = π L_i of
-// SSLPV's Eq. 7 (peers/sslpv/lookup.glsl).
+// (materials/slots.glsl): its η here, its BSSRDF in the gather. The frame's method gives B: each
+// method has its own variant of this pass, which includes the method's file as
+// TALLOW_SURFACE_METHOD (camera/surface_method.glsl: Algorithm 1 over the radiosity maps, the
+// gather per pixel, the image-space accumulation, SSLPV's Eq. 7), so a variant holds and binds
+// only its method's code and samplers.
 #include "common/lights.glsl"
 #include "bssrdf/fresnel.glsl"
-#include "maps/algorithm1.glsl"
-#include "maps/gather.glsl"
-#include "maps/vpl_receiver.glsl"
-#include "peers/image_space/result.glsl"
-#include "peers/sslpv/lookup.glsl"
+#include "materials/slots.glsl"
 #include "flame/flame_mirror.glsl"
+#include TALLOW_SURFACE_METHOD
 
 // Depth test before shading: fragments behind what is already drawn cost no shading.
 layout(early_fragment_tests) in;
@@ -31,9 +30,6 @@ uniform vec3 uCameraPosition;
 uniform int uCameraOrthographic;
 uniform vec3 uCameraForward;
 uniform int uTranslucent;  // 1: this object is shaded by the frame's method
-// The frame's method, sss::SurfaceShading: 1 Algorithm 1, 2 the gather (no-cache), 3 image-space,
-// 4 SSLPV.
-uniform int uTranslucentMethod;
 uniform int uSlot;         // this object's main translucent slot (materials/slots.glsl), −1: none
 uniform int uSpecular;     // render.specular
 uniform int uEnvironment;  // 1: uEnvMap holds the scene's environment
@@ -83,15 +79,8 @@ void main() {
     vec3 facing = backFacing ? -n : n;
     int slot = surfaceSlot(uSlot, vWorldPosition, n);
     float eta = uSlotEta[slot];  // a translucent object always has a slot
-    float seenBy = 1.0;
-    int firstMap = -1, secondFacingMap = -1;
-    vec3 b = uTranslucentMethod == 3 ? imageSpaceRadiosity(ivec2(gl_FragCoord.xy))
-             : uTranslucentMethod == 2
-                 ? gatherScatteredRadiosity(vWorldPosition, facing, uvec2(gl_FragCoord.xy), 4095, slot)
-             : uTranslucentMethod == 4 ? sslpvRadiosity(vWorldPosition, backFacing ? -n : n, seenBy)  // SSLPV, Eqs. 6–7
-                                       : scatteredRadiosity(vWorldPosition, backFacing ? -n : n, dpdx, dpdy, seenBy, firstMap,
-                                                                            secondFacingMap);
-    oCoverageBins = uTranslucentMethod == 1 ? uvec2(coverageBin(firstMap), coverageBin(secondFacingMap)) + 1u : uvec2(0u);
+    TranslucentShading shading = translucentShading(vWorldPosition, facing, dpdx, dpdy, slot);
+    oCoverageBins = shading.coverageBins;
     vec3 v = normalize(toCamera);
     float cosO = clamp(dot(facing, v), 0.0, 1.0);
     vec3 mirror = reflect(-v, facing);
@@ -103,14 +92,14 @@ void main() {
       mirrored += uFlameSize[f].z * seen;
     }
     vec3 specular = uSpecular != 0 ? fresnelReflectance(cosO, eta) * mirrored : vec3(0.0);
-    vec3 transmitted = fresnelTransmittance(cosO, eta) / PI * b;
+    vec3 transmitted = fresnelTransmittance(cosO, eta) / PI * shading.b;
     oRadiance = vec4(transmitted + specular, 1.0);
     oTranslucent = vec4(transmitted, 1.0);
-    oCoverage = vec4(1.0, seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
+    oCoverage = vec4(1.0, shading.seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
     return;
   }
   if (backFacing) n = -n;
-  vec3 e = lightIrradiance(vWorldPosition, n) + vplIrradiance(vWorldPosition, n);
+  vec3 e = lightIrradiance(vWorldPosition, n) + surroundingsIrradiance(vWorldPosition, n);
   oRadiance = vec4(uAlbedo / PI * e + uAlbedo * uAmbient, 1.0);
   oCoverage = vec4(0.0, 0.0, 1.0, 0.0);
   oCoverageBins = uvec2(0u);

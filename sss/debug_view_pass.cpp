@@ -100,7 +100,7 @@ std::string DebugViewPass::drawTexture(const DebugView& view, const Renderer& re
   p.set("uToneMap", static_cast<int>(settings.toneMap.op));
   p.set("uSquare", 0);
   p.set("uCube", 0);
-  const RadiosityMaps* maps = renderer.radiosityMaps();
+  const RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>();
   const bool gbuffer = view.kind == DebugViewKind::GBufferPosition || view.kind == DebugViewKind::GBufferNormal;
   if (gbuffer) {
     if (!maps || !RadiosityMaps::needsLightGBuffers(scene, settings))
@@ -179,7 +179,7 @@ void DebugViewPass::drawWireframe(const Renderer& renderer, const Scene& scene, 
 
 std::string DebugViewPass::drawVpls(const Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                                     int width, int height) {
-  const VirtualPointLights* vpls = renderer.virtualPointLights();
+  const VirtualPointLights* vpls = renderer.module<sss::VirtualPointLights>();
   if (!vpls || !VirtualPointLights::applies(scene, settings))
     return "no VPLs in this frame (vpl.count > 0, method radiosity-maps and an opaque receiver are needed)";
   // Position and colour per active VPL; its power is ∝ B/π · A_v (record radiance × area).

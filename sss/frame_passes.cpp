@@ -125,7 +125,7 @@ void PointShadowPass::run(FrameContext& context, bool /*changed*/) {
 
 std::string CameraPass::reason(const FrameState& state) const {
   const std::string translucent =
-      method_->shading(state) == SurfaceShading::None
+      !method_->shadesTranslucent(state)
           ? "Lambertian with direct light, shadows and ambient (method albedo: translucent objects use their albedo)"
           : method_->describeShading(state) + ", opaque ones Lambertian";
   return std::to_string(state.scene.objects.size()) + " object(s): " + translucent +

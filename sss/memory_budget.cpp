@@ -16,7 +16,9 @@
 #include "sss/maps/virtual_point_lights.h"
 #include "sss/peers/image_space.h"
 #include "sss/peers/sslpv.h"
+#include "sss/frame_plan.h"
 #include "sss/shadow_pass.h"
+#include "sss/translucency_method.h"
 #include "sss/still_average.h"
 
 namespace tallow::sss {
@@ -45,12 +47,7 @@ std::size_t screen(GLenum format, int width, int height) {
   return Texture::bytesFor(GL_TEXTURE_2D, format, width, height, 1, 1);
 }
 
-int translucentCount(const Scene& scene) {
-  return static_cast<int>(std::count_if(scene.objects.begin(), scene.objects.end(),
-                                        [](const SceneObject& o) { return o.translucent; }));
-}
 
-std::string square(const char* key, int value) { return std::string(key) + "=" + std::to_string(value) + "²"; }
 
 }  // namespace
 
@@ -143,10 +140,29 @@ std::size_t imageSpaceBytes(int width, int height, int translucentObjects, const
   return targets + pattern;
 }
 
+void FrameMemory::add(std::string name, std::string sizedBy, std::size_t bytes) {
+  if (bytes > 0) items.push_back({std::move(name), std::move(sizedBy), bytes});
+}
+
+int translucentObjectCount(const Scene& scene) {
+  return static_cast<int>(std::count_if(scene.objects.begin(), scene.objects.end(),
+                                        [](const SceneObject& o) { return o.translucent; }));
+}
+
+std::string squareText(const char* key, int value) { return std::string(key) + "=" + std::to_string(value) + "²"; }
+
+std::pair<int, std::string> budgetSize(const char* key, int chosen, int setting) {
+  const int size = chosen > 0 ? chosen : setting == kAuto ? kAutoBudgetSize : setting;
+  const std::string text = chosen > 0 || setting == kAuto
+                               ? "the chosen " + std::string(key) + " " + std::to_string(size) + "²"
+                               : squareText(key, size);
+  return {size, text};
+}
+
 FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize, int mapSize) {
   FrameMemory m;
   const auto add = [&](std::string name, std::string sizedBy, std::size_t bytes) {
-    if (bytes > 0) m.items.push_back({std::move(name), std::move(sizedBy), bytes});
+    m.add(std::move(name), std::move(sizedBy), bytes);
   };
   int fields = 0;
   for (const SceneObject& o : scene.objects) fields += o.shape == ShapeKind::Field ? 1 : 0;
@@ -154,49 +170,9 @@ FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int 
       static_cast<std::size_t>(fields) * dualContouringBytes(settings.fieldRes));
   add("shadow maps", "render.shadow_map_size=" + std::to_string(settings.shadowMapSize),
       shadowMapBytes(scene, settings));
-  int directional = 0, point = 0;
-  for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? directional : point)++;
-  const SssSettings& s = settings.sss;
-  // A size the renderer chose (> 0), else the setting, with "auto" not yet chosen as kAutoBudgetSize.
-  const auto sized = [](const char* key, int chosen, int setting) {
-    const int size = chosen > 0 ? chosen : setting == kAuto ? kAutoBudgetSize : setting;
-    const std::string text = chosen > 0 || setting == kAuto
-                                 ? "the chosen " + std::string(key) + " " + std::to_string(size) + "²"
-                                 : square(key, size);
-    return std::pair{size, text};
-  };
-  if (RadiosityMaps::needsLightGBuffers(scene, settings)) {
-    const auto [size, text] = sized("sss.light_map_size", lightMapSize, s.lightMapSize);
-    add("light G-buffers",
-        std::to_string(directional) + " directional and " + std::to_string(point) + " point light(s) at " + text,
-        lightGBufferBytes(directional, point, size));
-  }
-  if (RadiosityMaps::applies(scene, settings)) {
-    const int k = mapCount(scene, settings);
-    const auto [size, text] = sized("sss.map_size", mapSize, s.mapSize);
-    const std::string maps = s.maps == kAuto && scene.mapDirections.empty()
-                                 ? "sss.maps=auto (at most " + std::to_string(k) + ")"
-                                 : "sss.maps=" + std::to_string(k);
-    add("radiosity maps", maps + " × " + text,
-        radiosityMapBytes(k, size, s.computeGather, s.history > 0));
-  }
-  if (VirtualPointLights::applies(scene, settings)) {
-    const VplSettings& v = settings.vpl;
-    add("VPLs", "vpl.count=" + std::to_string(v.count) + ", " + square("vpl.cube_size", v.cubeSize), vplBytes(v));
-    add("VPL shadow maps",
-        "vpl.shadow_clusters=" + std::to_string(v.shadowClusters) + " × " + square("vpl.shadow_size", v.shadowSize),
-        vplShadowBytes(v));
-  }
-  if (ImageSpaceSss::applies(scene, settings))
-    add("image-space buffers",
-        "render.width × render.height=" + std::to_string(settings.width) + "x" + std::to_string(settings.height),
-        imageSpaceBytes(settings.width, settings.height, translucentCount(scene), settings.imageSpace));
-  if (Sslpv::applies(scene, settings)) {
-    const SslpvSettings& v = settings.sslpv;
-    add("SSLPV grids", "sslpv.grid=" + std::to_string(v.grid) + "³", Sslpv::gridBytes(v.grid, translucentCount(scene)));
-    add("SSLPV light G-buffers", square("sslpv.inject_size", v.injectSize),
-        lightGBufferBytes(directional, point, v.injectSize));
-  }
+  // The frame's translucency method's own (its passes' modules): TranslucencyMethod::addMemory.
+  for (const auto& method : makeTranslucencyMethods())
+    if (method->id() == settings.sss.method) method->addMemory(scene, settings, BudgetSizes{lightMapSize, mapSize}, m);
   add("render targets", "render.width × render.height=" + std::to_string(settings.width) + "x" +
                             std::to_string(settings.height),
       renderTargetBytes(settings.width, settings.height));

@@ -8,6 +8,7 @@
 // and the peer methods' screen buffers and grids.
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sss/render_settings.h"
@@ -25,7 +26,21 @@ struct MemoryItem {
 struct FrameMemory {
   std::vector<MemoryItem> items;  ///< in the order of the frame's passes; only what the frame needs
   std::size_t total() const;
+  /// Appends an item (nothing when bytes is 0).
+  void add(std::string name, std::string sizedBy, std::size_t bytes);
 };
+
+/// The sizes the renderer chose (> 0; 0: not chosen yet): sss.light_map_size and sss.map_size.
+struct BudgetSizes {
+  int lightMapSize = 0, mapSize = 0;
+};
+/// The scene's translucent objects.
+int translucentObjectCount(const Scene& scene);
+/// "key=value²".
+std::string squareText(const char* key, int value);
+/// The size to count for `key`: the renderer's choice (> 0), else the setting, "auto" not yet
+/// chosen as kAutoBudgetSize; with the text naming it.
+std::pair<int, std::string> budgetSize(const char* key, int chosen, int setting);
 
 /// The camera pass's targets: radiance (RGBA32F), coverage (RGBA8) and depth (32F).
 std::size_t renderTargetBytes(int width, int height);

@@ -9,9 +9,6 @@
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/maps/radiosity_maps.h"
-#include "sss/maps/virtual_point_lights.h"
-#include "sss/peers/image_space.h"
-#include "sss/peers/sslpv.h"
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
 #include "sss/memory_budget.h"
@@ -115,21 +112,18 @@ std::vector<std::pair<Pass*, Renderer::Due>> Renderer::schedule(const FrameState
   return out;
 }
 
-namespace {
-
-bool autoMaps(const Scene& scene, const RenderSettings& settings) {
-  return settings.sss.maps == kAuto && scene.mapDirections.empty() && RadiosityMaps::applies(scene, settings);
+bool Renderer::choosesMapCount(const Scene& scene, const RenderSettings& settings) const {
+  const FrameState state{scene, settings, 0.0, 0};
+  return plan_.method(state).choosesMapCount(state);
 }
 
-}  // namespace
-
 int Renderer::chosenMapCount(const Scene& scene, const RenderSettings& settings) const {
-  return autoMaps(scene, settings) ? mapCountChooser_.k() : mapCount(scene, settings);
+  return choosesMapCount(scene, settings) ? mapCountChooser_.k() : mapCount(scene, settings);
 }
 
 RenderSettings Renderer::withChosenMaps(const Scene& scene, const RenderSettings& settings) const {
   RenderSettings s = settings;
-  if (autoMaps(scene, settings)) s.sss.maps = mapCountChooser_.k();
+  if (choosesMapCount(scene, settings)) s.sss.maps = mapCountChooser_.k();
   return s;
 }
 
@@ -140,7 +134,8 @@ void Renderer::takeMapCoverage(const Scene& scene, const RenderSettings& setting
   if (counts->vpls) {
     vplCoverage_ = counts->vpls;
     vplCoverageMaps_ = counts->maps;
-  } else if (vplCoverage_ && vplCoverageMaps_ == counts->maps && VirtualPointLights::applies(scene, settings)) {
+  } else if (vplCoverage_ && vplCoverageMaps_ == counts->maps &&
+             plan_.method(FrameState{scene, settings, 0.0, 0}).countsVplCoverage(FrameState{scene, settings, 0.0, 0})) {
     counts->vpls = vplCoverage_;
   }
   mapCountChooser_.update(*counts);
@@ -163,7 +158,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   // Lights that follow a candle's flame move with t; everything else is the scene as loaded.
   const Scene scene = sceneAtTime(sceneAsLoaded, timeS);
   checkLimits(scene, userSettings);  // sss.maps=auto: as many maps as auto may choose
-  const bool countCoverage = autoMaps(scene, userSettings);
+  const bool countCoverage = choosesMapCount(scene, userSettings);
   if (countCoverage) takeMapCoverage(scene, userSettings);
   const RenderSettings settings = withChosenMaps(scene, userSettings);
   target_.ensure(settings.width, settings.height);
@@ -322,9 +317,5 @@ bool Renderer::repairGeometry() {
   return true;
 }
 
-const RadiosityMaps* Renderer::radiosityMaps() const { return modules_.find<RadiosityMaps>(); }
-const ImageSpaceSss* Renderer::imageSpace() const { return modules_.find<ImageSpaceSss>(); }
-const VirtualPointLights* Renderer::virtualPointLights() const { return modules_.find<VirtualPointLights>(); }
-const Sslpv* Renderer::sslpv() const { return modules_.find<Sslpv>(); }
 
 }  // namespace tallow::sss

@@ -29,10 +29,6 @@
 
 namespace tallow::sss {
 
-class RadiosityMaps;
-class ImageSpaceSss;
-class VirtualPointLights;
-class Sslpv;
 class FieldObjects;
 
 /// Visible pixels of translucent objects shaded from the radiosity maps, and those no map sees
@@ -109,8 +105,13 @@ class Renderer {
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
   std::size_t triangleCount() const;
   std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers, maps
-  /// The radiosity maps (their light G-buffers serve no-cache too), once a frame has used them.
-  const RadiosityMaps* radiosityMaps() const;
+  /// A method's GPU state (sss::RadiosityMaps, whose light G-buffers serve no-cache too;
+  /// ImageSpaceSss, VirtualPointLights, Sslpv, …), once a frame has used it; null before. The
+  /// renderer names no method: the caller names the module it looks at (the type must be complete).
+  template <typename T>
+  const T* module() const {
+    return modules_.find<T>();
+  }
   const SceneGeometry& geometry() const { return geometry_; }
   /// The scene's field objects (their extractors and the melting meshes' static grids on the GPU).
   const FieldObjects& fieldObjects() const;
@@ -119,12 +120,6 @@ class Renderer {
   /// buffers, which are grown (FieldObjects::growOverflowed); the frame, cut, must be rendered
   /// again. render() itself checks the last frame's without waiting and then redraws everything.
   bool repairGeometry();
-  /// The image-space method's passes, once a frame has used them (null before).
-  const ImageSpaceSss* imageSpace() const;
-  /// The VPLs of the last frame that had them (null before).
-  const VirtualPointLights* virtualPointLights() const;
-  /// SSLPV's grids, once a frame has used them (null before).
-  const Sslpv* sslpv() const;
   /// sss.maps=auto: the K the next frame uses (sss/maps/map_count.h), from the coverage read back so
   /// far; the setting itself otherwise.
   int chosenMapCount(const Scene& scene, const RenderSettings& settings) const;
@@ -161,6 +156,8 @@ class Renderer {
   /// The due passes of the frame in `state` in order, advancing `resources` as running them would.
   std::vector<std::pair<Pass*, Due>> schedule(const FrameState& state, std::map<std::string, Stamp>& resources) const;
 
+  /// sss.maps=auto with a method that draws maps (TranslucencyMethod::choosesMapCount).
+  bool choosesMapCount(const Scene& scene, const RenderSettings& settings) const;
   /// `settings` with sss.maps=auto replaced by the chosen K (what the passes and their inputs see).
   RenderSettings withChosenMaps(const Scene& scene, const RenderSettings& settings) const;
   /// Takes the newest coverage counts the GPU has finished (no wait) into the K chooser.

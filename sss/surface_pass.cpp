@@ -12,13 +12,23 @@ namespace {
 constexpr GLuint kDirectionalShadowUnit = 0;
 constexpr GLuint kPointShadowUnit = 1;
 constexpr GLuint kEnvironmentUnit = 2;
-constexpr GLuint kFirstMethodUnit = 3;  // then each method's units, in the order of context.methods
+constexpr GLuint kFirstMethodUnit = 3;  // then the frame's method's units (its variant of the pass)
 
 }  // namespace
 
 SurfacePass::SurfacePass(const gpu::ShaderLibrary& shaders)
-    : program_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}}}),
-      coverageHistogram_(shaders, {{{GL_COMPUTE_SHADER, "maps/coverage_histogram.comp"}}}) {}
+    : shaders_(shaders), coverageHistogram_(shaders, {{{GL_COMPUTE_SHADER, "maps/coverage_histogram.comp"}}}) {}
+
+gpu::Program& SurfacePass::variant(const TranslucencyMethod& method) {
+  const std::string file = method.surfaceShader();
+  auto it = variants_.find(file);
+  if (it == variants_.end()) {
+    gpu::ProgramDesc desc{{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}},
+                          {"TALLOW_SURFACE_METHOD \"" + file + "\""}};
+    it = variants_.emplace(file, gpu::Program(shaders_, desc)).first;
+  }
+  return it->second;
+}
 
 void SurfacePass::setEnvironment(const Environment& environment) {
   const gpu::Image map = gpu::readHdr(environment.file);
@@ -34,7 +44,7 @@ void SurfacePass::setEnvironment(const Environment& environment) {
 void SurfacePass::render(const FrameContext& context) {
   const Scene& scene = context.scene();
   const RenderSettings& settings = context.settings();
-  auto& p = program_;
+  gpu::Program& p = variant(context.method);
   setLightUniforms(p, scene, settings, *context.modules.find<ShadowPass>(), kDirectionalShadowUnit, kPointShadowUnit);
   p.set("uAmbient", scene.ambient);
   setCameraUniforms(p, context.camera());
@@ -44,21 +54,16 @@ void SurfacePass::render(const FrameContext& context) {
   p.set("uEnvRotation", glm::radians(environmentRotationDeg_));
   p.set("uEnvScale", environmentScale_);
   if (environment_.id()) environment_.bind(kEnvironmentUnit);
-  const SurfaceShading shading = context.method.shading(context.state);
+  const bool shades = context.method.shadesTranslucent(context.state);
   // Each translucent surface point's material (a candle's pool: the liquid's), when a method shades
   // them, and the flames a mirror-like translucent surface reflects.
   SlotTable slots;
-  if (shading != SurfaceShading::None) {
+  if (shades) {
     slots = translucentSlotTable(scene);
     setSlotUniforms(p, slots, false);
     setFlameMirrorUniforms(p, scene, flameSheets(scene, context.state.timeS, settings));
   }
-  p.set("uTranslucentMethod", static_cast<int>(shading));
-  GLuint unit = kFirstMethodUnit;
-  for (const TranslucencyMethod* m : context.methods) {
-    m->bindSurface(p, context, unit, m == &context.method);
-    unit += static_cast<GLuint>(m->surfaceUnits());
-  }
+  context.method.bindSurface(p, context, kFirstMethodUnit);
 
   context.target.framebuffer.bind();
   glViewport(0, 0, settings.width, settings.height);
@@ -72,7 +77,7 @@ void SurfacePass::render(const FrameContext& context) {
     p.set("uNormalMatrix", item.normalMatrix);
     p.set("uAlbedo", item.albedo);
     const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
-    const bool translucent = shading != SurfaceShading::None && object.translucent;
+    const bool translucent = shades && object.translucent;
     p.set("uTranslucent", translucent ? 1 : 0);
     if (translucent) {
       p.set("uSlot", slots.objectSlot[static_cast<std::size_t>(item.objectIndex)]);
@@ -84,7 +89,7 @@ void SurfacePass::render(const FrameContext& context) {
   glBindVertexArray(0);
   glUseProgram(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (context.countMapCoverage && shading == SurfaceShading::Algorithm1) countCoverage(context);
+  if (context.countMapCoverage) countCoverage(context);  // sss.maps=auto: the maps' variant wrote the bins
 }
 
 void SurfacePass::countCoverage(const FrameContext& context) {

@@ -10,19 +10,11 @@
 #include <vector>
 
 #include "gpu/program.h"
+#include "sss/memory_budget.h"
 #include "sss/pass.h"
 #include "sss/render_settings.h"
 
 namespace tallow::sss {
-
-/// What surface.frag computes B with for translucent pixels (its uniform uTranslucentMethod).
-enum class SurfaceShading : int {
-  None = 0,        ///< no transport: translucent objects are drawn like opaque ones, with their albedo
-  Algorithm1 = 1,  ///< the scattered radiosity maps (maps/algorithm1.glsl)
-  Gather = 2,      ///< the gather per pixel against the light G-buffers (maps/gather.glsl)
-  ImageSpace = 3,  ///< the image-space accumulation at the pixel (peers/image_space/result.glsl)
-  Sslpv = 4,       ///< SSLPV's accumulation grid (peers/sslpv/lookup.glsl)
-};
 
 class TranslucencyMethod {
  public:
@@ -36,24 +28,39 @@ class TranslucencyMethod {
   /// The passes this method adds for this frame, in order (empty when the scene has no translucent
   /// object). The objects are the method's own and keep their state between frames.
   virtual std::vector<Pass*> passes(const FrameState& state) = 0;
-  /// How surface.frag shades translucent pixels this frame (None without translucent objects).
-  virtual SurfaceShading shading(const FrameState& state) const = 0;
+  /// True when the method shades this frame's translucent objects (false without any, and for the
+  /// albedo baseline, which draws them as opaque ones).
+  virtual bool shadesTranslucent(const FrameState& state) const = 0;
+  /// The GLSL file (relative to shaders/) of its part of the camera pass: translucentShading and
+  /// surroundingsIrradiance (camera/surface_method.glsl). The camera pass compiles one variant of
+  /// shaders/surface.frag per method with it as TALLOW_SURFACE_METHOD.
+  virtual std::string surfaceShader() const = 0;
   /// The camera pass's reason, this method's part: "translucent ones from …".
   virtual std::string describeShading(const FrameState& state) const = 0;
   /// What the camera pass reads for this method (inputs and resources), beyond its own.
   virtual PassIo surfaceIo(const FrameState& state) const = 0;
-  /// Texture units the method's samplers in surface.frag take (firstUnit … firstUnit + count − 1).
+  /// Texture units the method's samplers in its camera-pass variant take (firstUnit … firstUnit + count − 1).
   virtual int surfaceUnits() const = 0;
-  /// Sets this method's uniforms and samplers of surface.frag. When `active` is false the method is
-  /// not the frame's: its samplers still go to their own units (a sampler left on a unit of another
-  /// type voids every draw) and its contributions (the VPLs' light on receivers) are off.
-  virtual void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const = 0;
+  /// Sets the uniforms and samplers of its variant of the camera pass. Its samplers go to their
+  /// units also when its passes made nothing to read (no translucent object): a sampler left on a
+  /// unit of another type voids every draw.
+  virtual void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit) const = 0;
   /// Per translucent object, before its draw in the camera pass (the active method only).
   virtual void bindSurfaceObject(gpu::Program& /*program*/, const FrameContext& /*context*/, int /*objectIndex*/) const {}
   /// The weight of this frame's picture in a still's average (render.aa, sss/still_average.h): the
   /// samples its translucent estimate holds, relative to one frame's. A progressive method's frame k
   /// holds k frames of samples; a method that draws fresh samples each frame (or none) weighs 1.
   virtual double stillWeight(const FrameContext& /*context*/) const { return 1.0; }
+  /// Adds to `memory` what its passes allocate on the GPU for a frame of `scene` with `settings`
+  /// (sss/memory_budget.h; `sizes`: what the renderer chose for the auto sizes so far).
+  virtual void addMemory(const Scene& /*scene*/, const RenderSettings& /*settings*/, const BudgetSizes& /*sizes*/,
+                         FrameMemory& /*memory*/) const {}
+  /// sss.maps=auto: true when the method draws maps whose count the renderer chooses from the
+  /// coverage its camera pass (and its VPLs) count (sss/maps/map_count.h).
+  virtual bool choosesMapCount(const FrameState& /*state*/) const { return false; }
+  /// True when the method's VPLs count coverage too; they run only when the maps change, so their
+  /// last counts stand for the frames after.
+  virtual bool countsVplCoverage(const FrameState& /*state*/) const { return false; }
 };
 
 /// True when the scene has a translucent object.
@@ -65,11 +72,12 @@ class AlbedoMethod final : public TranslucencyMethod {
  public:
   SssMethod id() const override { return SssMethod::Albedo; }
   std::vector<Pass*> passes(const FrameState&) override { return {}; }
-  SurfaceShading shading(const FrameState&) const override { return SurfaceShading::None; }
+  bool shadesTranslucent(const FrameState&) const override { return false; }
+  std::string surfaceShader() const override { return "camera/surface_albedo.glsl"; }
   std::string describeShading(const FrameState&) const override;
   PassIo surfaceIo(const FrameState&) const override { return {}; }
   int surfaceUnits() const override { return 0; }
-  void bindSurface(gpu::Program&, const FrameContext&, GLuint, bool) const override {}
+  void bindSurface(gpu::Program&, const FrameContext&, GLuint) const override {}
 };
 
 }  // namespace tallow::sss

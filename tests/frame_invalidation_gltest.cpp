@@ -281,7 +281,7 @@ void checkEveryParameter(const std::string& method, int minimumVisible, const Va
       glFinish();
     }
     EXPECT_EQ(ran, "flame surface") << variant.name << ", " << method << ": the base scene does not settle";
-    return renderer.radiosityMaps() ? static_cast<int>(renderer.radiosityMaps()->views().size()) : 0;
+    return renderer.module<sss::RadiosityMaps>() ? static_cast<int>(renderer.module<sss::RadiosityMaps>()->views().size()) : 0;
   };
   // The settings as the passes saw them: sss.maps=auto replaced by the K in use.
   const auto withK = [](app::Config c, int k) {
@@ -321,7 +321,7 @@ void checkEveryParameter(const std::string& method, int minimumVisible, const Va
     const sss::FrameTimings timings = renderer.render(config.scene, config.render, t);
     glFinish();
     const std::set<std::string> ran = ranPasses(timings);
-    const int k = renderer.radiosityMaps() ? static_cast<int>(renderer.radiosityMaps()->views().size()) : 0;
+    const int k = renderer.module<sss::RadiosityMaps>() ? static_cast<int>(renderer.module<sss::RadiosityMaps>()->views().size()) : 0;
     EXPECT_EQ(join(ran), join(expectedReruns(withK(base, baseK), withK(config, k)))) << what;
     const gpu::Image incremental = renderer.readRadiance();
     if (incremental.pixels != basePicture.pixels) ++visible;

@@ -214,7 +214,7 @@ TEST(ImageSpace, GpuPatternIsTheSharedCodesPattern) {
   PresetSession s("slab", with(kSlabImageSpace, {"image_space.tile=2", "image_space.samples=12",
                                                  "image_space.uniform_share=0.25"}));
   s.render();
-  const sss::ImageSpaceSss* is = s.renderer().imageSpace();
+  const sss::ImageSpaceSss* is = s.renderer().module<sss::ImageSpaceSss>();
   ASSERT_NE(is, nullptr);
   const int sets = 4, samples = 12, nUniform = 3;
   std::vector<sss::ImageSpacePatternRecord> records(static_cast<std::size_t>(sets * samples));
@@ -253,7 +253,7 @@ TEST(ImageSpace, AccumulatesThenStopsAndRestartsWhenTheCameraMoves) {
   const gpu::Image second = s.render(0.0, &t);
   EXPECT_FALSE(ran(t, "image_space.gbuffer")) << "the G-buffer holds for the accumulation";
   EXPECT_TRUE(ran(t, "image_space.scatter"));
-  EXPECT_EQ(s.renderer().imageSpace()->frames(), 2);
+  EXPECT_EQ(s.renderer().module<sss::ImageSpaceSss>()->frames(), 2);
   const gpu::Image converged = s.render(0.0, &t);
   EXPECT_FALSE(ran(t, "image_space.scatter")) << "converged: only the surface pass";
   EXPECT_TRUE(ran(t, "surface"));
@@ -261,9 +261,9 @@ TEST(ImageSpace, AccumulatesThenStopsAndRestartsWhenTheCameraMoves) {
   s.scene().camera.position.x += 0.01f;
   s.render(0.0, &t);
   EXPECT_TRUE(ran(t, "image_space.gbuffer")) << "a moved camera restarts";
-  EXPECT_EQ(s.renderer().imageSpace()->frames(), 1);
-  EXPECT_GT(s.renderer().gpuBytes(), s.renderer().imageSpace()->bytes());
-  EXPECT_GE(s.renderer().imageSpace()->bytes(), std::size_t{48 * 48 * (16 * 6 + 8 + 4)});
+  EXPECT_EQ(s.renderer().module<sss::ImageSpaceSss>()->frames(), 1);
+  EXPECT_GT(s.renderer().gpuBytes(), s.renderer().module<sss::ImageSpaceSss>()->bytes());
+  EXPECT_GE(s.renderer().module<sss::ImageSpaceSss>()->bytes(), std::size_t{48 * 48 * (16 * 6 + 8 + 4)});
 }
 
 // --- Receivers and hard cases ------------------------------------------------------------------------

@@ -39,7 +39,7 @@ std::vector<std::string> with(std::vector<std::string> sets, const std::string& 
   return sets;
 }
 
-int mapsUsed(const test::PresetSession& s) { return static_cast<int>(s.renderer().radiosityMaps()->views().size()); }
+int mapsUsed(const test::PresetSession& s) { return static_cast<int>(s.renderer().module<sss::RadiosityMaps>()->views().size()); }
 
 TEST(MapCountRenderer, TheBlobPlayingAt8FpsKeepsItsK) {
   // Issue 38: played at 8 fps, the blob's grazing share at K = 12 wanders around the 2% tolerance
@@ -74,16 +74,16 @@ TEST(MapCountRenderer, UntickingAutoKeepsTheChosenKAndItsMaps) {
   app::ViewSession session(options, shaders);
   session.playback().pause();
   for (int frame = 0; frame < 4; ++frame) session.render();
-  const int k = static_cast<int>(session.renderer().radiosityMaps()->views().size());
-  const int frames = session.renderer().radiosityMaps()->frames();
+  const int k = static_cast<int>(session.renderer().module<sss::RadiosityMaps>()->views().size());
+  const int frames = session.renderer().module<sss::RadiosityMaps>()->frames();
   ASSERT_NE(k, sss::kAutoMapsFirst) << "auto chose another K than the one the box used to set";
   ASSERT_EQ(session.autoChoice("sss.maps"), std::optional<std::int64_t>(k));
   const app::Registry::Param& maps = *session.registry().find("sss.maps");
   EXPECT_EQ(session.set("sss.maps", app::autoOffValue(maps, session.autoChoice("sss.maps"))), "");
   EXPECT_EQ(session.config().render.sss.maps, k);
   session.render();
-  EXPECT_EQ(static_cast<int>(session.renderer().radiosityMaps()->views().size()), k);
-  EXPECT_EQ(session.renderer().radiosityMaps()->frames(), frames + 1) << "the maps were not restarted";
+  EXPECT_EQ(static_cast<int>(session.renderer().module<sss::RadiosityMaps>()->views().size()), k);
+  EXPECT_EQ(session.renderer().module<sss::RadiosityMaps>()->frames(), frames + 1) << "the maps were not restarted";
   EXPECT_EQ(session.autoChoice("sss.map_size"), std::optional<std::int64_t>(128)) << "kSmallBunny's map size";
   EXPECT_EQ(session.autoChoice("render.width"), std::nullopt);
 }
@@ -103,7 +103,7 @@ TEST(MapCountRenderer, TheBunnySettlesOnMapsThatLeaveNoHoles) {
   // A change of K restarted the maps; once settled they accumulate.
   int settledFor = 0;
   for (auto it = used.rbegin(); it != used.rend() && *it == k; ++it) ++settledFor;
-  EXPECT_EQ(session.renderer().radiosityMaps()->frames(), settledFor);
+  EXPECT_EQ(session.renderer().module<sss::RadiosityMaps>()->frames(), settledFor);
 
   // The GPU's counts of this K against the CPU's count of the coverage target, pixel by pixel: one
   // count per visible translucent pixel (fragments hidden by nearer ones drawn later do not count;
@@ -167,7 +167,7 @@ TEST(MapCountRenderer, AFixedKIsNeverChanged) {
   test::PresetSession session("bunny", with(kSmallBunny, "sss.maps=16"));
   for (int frame = 0; frame < 3; ++frame) session.render(0.0);
   EXPECT_EQ(mapsUsed(session), 16);
-  EXPECT_EQ(session.renderer().radiosityMaps()->frames(), 3);
+  EXPECT_EQ(session.renderer().module<sss::RadiosityMaps>()->frames(), 3);
   EXPECT_EQ(session.renderer().chosenMapCount(session.scene(), session.settings()), 16);
 }
 

@@ -29,7 +29,7 @@ TEST(MapResolutionRenderer, TheOneMetreBunnyGetsItsSizesFromTheDiffusionLength) 
   // 256 < D / 3.95 mm ≤ 512 and 1024 < 4 D / 3.95 mm ≤ 2048, whatever the 24-pixel screen says.
   test::PresetSession session("bunny", bunnyAt(1.0));
   session.render(0.0);
-  const sss::RadiosityMaps* maps = session.renderer().radiosityMaps();
+  const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
   ASSERT_NE(maps, nullptr);
   const double diameterMm = 2000.0 * maps->sphere().radius;
   ASSERT_GT(diameterMm, 1012.0);
@@ -42,7 +42,7 @@ TEST(MapResolutionRenderer, TheOneMetreBunnyGetsItsSizesFromTheDiffusionLength) 
 TEST(MapResolutionRenderer, TheCentimetreBunnyGetsTheFloorsAndKeepsThemWhileTheCameraMoves) {
   test::PresetSession session("bunny", bunnyAt(0.01));
   session.render(0.0);
-  const sss::RadiosityMaps* maps = session.renderer().radiosityMaps();
+  const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
   ASSERT_NE(maps, nullptr);
   EXPECT_EQ(maps->mapSize(), sss::kAutoMapMin);
   EXPECT_EQ(maps->lightMapSize(), sss::kAutoLightMin);

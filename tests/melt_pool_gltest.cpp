@@ -36,7 +36,7 @@ TEST(MeltPool, LightGBufferTagsTheLiquidAsTheCpuDoes) {
                                    "sss.samples=1", "sss.frames=1", "sss.map_size=32", "sss.light_map_size=256",
                                    "vpl.count=0"});
   s.render(kT);
-  const sss::RadiosityMaps* maps = s.renderer().radiosityMaps();
+  const sss::RadiosityMaps* maps = s.renderer().module<sss::RadiosityMaps>();
   ASSERT_NE(maps, nullptr);
   ASSERT_EQ(maps->slotTable().count, 2);
   const int liquidTag = maps->slotTable().liquidSlot[0] + 1;

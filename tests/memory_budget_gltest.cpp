@@ -44,7 +44,7 @@ TEST_P(MemoryBudget, FiguresEqualTheBytesOfTheAllocatedObjects) {
   const sss::Renderer& renderer = session.renderer();
   const sss::Scene& scene = session.scene();
   const sss::RenderSettings& settings = session.settings();
-  const sss::RadiosityMaps* maps = renderer.radiosityMaps();
+  const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>();
   const int lightMapSize = maps ? maps->lightMapSize() : 0;
   const int mapSize = maps ? maps->mapSize() : 0;  // what sss.map_size=auto chose, or the setting
   const sss::FrameMemory budget = sss::frameMemory(scene, settings, lightMapSize, mapSize);
@@ -59,10 +59,10 @@ TEST_P(MemoryBudget, FiguresEqualTheBytesOfTheAllocatedObjects) {
                                  sss::radiosityMapBytes(k, mapSize, settings.sss.computeGather,
                                                          settings.sss.history > 0));
   }
-  if (const sss::VirtualPointLights* vpls = renderer.virtualPointLights()) {
+  if (const sss::VirtualPointLights* vpls = renderer.module<sss::VirtualPointLights>()) {
     EXPECT_EQ(vpls->bytes(), sss::vplBytes(settings.vpl) + sss::vplShadowBytes(settings.vpl));
   }
-  if (const sss::ImageSpaceSss* is = renderer.imageSpace()) {
+  if (const sss::ImageSpaceSss* is = renderer.module<sss::ImageSpaceSss>()) {
     int translucent = 0;
     for (const sss::SceneObject& o : scene.objects) translucent += o.translucent ? 1 : 0;
     EXPECT_EQ(is->bytes(), sss::imageSpaceBytes(settings.width, settings.height, translucent, settings.imageSpace));

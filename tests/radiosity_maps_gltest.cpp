@@ -150,7 +150,7 @@ std::size_t cubeTexel(const glm::dvec3& d, int size, int cube) {
 /// the cube's face by Table 8.19). Returns the relative differences per band and texel.
 std::vector<double> gpuAgainstCpu(PresetSession& s, int stride) {
   s.render();
-  const sss::RadiosityMaps& maps = *s.renderer().radiosityMaps();
+  const sss::RadiosityMaps& maps = *s.renderer().module<sss::RadiosityMaps>();
   EXPECT_EQ(maps.frames(), 1);
   const std::vector<glm::vec4> b = readLayers(maps.maps());
   const std::vector<glm::vec4> xo = readLayers(maps.mapPositions()), no = readLayers(maps.mapNormals());
@@ -276,7 +276,7 @@ TEST(RadiosityMaps, FragmentAndComputeGathersGiveTheSameMaps) {
     PresetSession s("bunny", sets);
     s.render();
     s.render();
-    maps.push_back(readLayers(s.renderer().radiosityMaps()->maps()));
+    maps.push_back(readLayers(s.renderer().module<sss::RadiosityMaps>()->maps()));
   }
   ASSERT_EQ(maps[0].size(), maps[1].size());
   std::size_t shaded = 0, worstAt = 0;
@@ -311,7 +311,7 @@ TEST(RadiosityMaps, ProgressiveErrorFallsLikeOneOverTheSquareRootOfFrames) {
                             "sss.map_size=128", "sss.light_map_size=256", "sss.frames=32"});
   // Level 0 of the maps holds Σ_F (B_N, 1): B is rgb / a where a texel is covered.
   const auto meanB = [&]() {
-    std::vector<glm::vec4> texels = readLayers(s.renderer().radiosityMaps()->maps());
+    std::vector<glm::vec4> texels = readLayers(s.renderer().module<sss::RadiosityMaps>()->maps());
     for (glm::vec4& t : texels) t = t.a > 0.0f ? t / t.a : glm::vec4(0.0f);
     return texels;
   };
@@ -569,8 +569,8 @@ void expectFiniteMaps(PresetSession& s, const std::string& what) {
   const gpu::Image image = s.render();
   for (const glm::vec4& p : image.pixels)
     for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(p[c]) && p[c] >= 0.0f) << what << ": pixel " << p[c];
-  ASSERT_NE(s.renderer().radiosityMaps(), nullptr) << what;
-  for (const glm::vec4& t : readLayers(s.renderer().radiosityMaps()->maps()))
+  ASSERT_NE(s.renderer().module<sss::RadiosityMaps>(), nullptr) << what;
+  for (const glm::vec4& t : readLayers(s.renderer().module<sss::RadiosityMaps>()->maps()))
     for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(t[c])) << what << ": map texel " << t[c];
 }
 
@@ -651,11 +651,11 @@ TEST(RadiosityMaps, MapDirectionsListedInThePresetReplaceHalton) {
   PresetSession s(listed.string(), {"render.width=16", "render.height=16", "sss.maps=9", "sss.samples=1",
                                     "sss.map_size=32", "sss.light_map_size=64"});
   s.render();
-  const auto& views = s.renderer().radiosityMaps()->views();
+  const auto& views = s.renderer().module<sss::RadiosityMaps>()->views();
   ASSERT_EQ(views.size(), 2u);
   EXPECT_NEAR(glm::distance(views[0].direction, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::distance(views[1].direction, glm::normalize(glm::vec3(1, 1, 0))), 0.0f, 1e-6f);
-  EXPECT_EQ(s.renderer().radiosityMaps()->maps().depth(), 2);
+  EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->maps().depth(), 2);
   const auto empty = dir.write("empty.json", json.substr(0, at) + ", \"map_directions\": []}\n");
   const auto r = test::runTallow({"capture", "--preset", empty.string(), "--out", (dir.path() / "o").string()});
   EXPECT_EQ(r.exitCode, 1);
@@ -710,7 +710,7 @@ struct MapCounts {
 /// sss.history − 1 plus this frame, or started again).
 MapCounts mapCounts(PresetSession& s, float keptAtLeast) {
   MapCounts c;
-  for (const glm::vec4& t : readLayers(s.renderer().radiosityMaps()->maps())) {
+  for (const glm::vec4& t : readLayers(s.renderer().module<sss::RadiosityMaps>()->maps())) {
     if (t.a <= 0.0f) continue;
     ++c.covered;
     c.maxFrames = std::max(c.maxFrames, t.a);
@@ -740,19 +740,19 @@ TEST(MapHistory, WhileTheBlobMovesTexelsKeepAtMostHistoryFramesAndResetWhereTheS
   // last three frames holds fewer than 4.
   EXPECT_GT(moving.kept, moving.covered / 5) << "much of the surface moved less than half a diffusion length";
   EXPECT_GT(moving.fresh, 0) << "the silhouettes moved: some texels started again";
-  EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 4);
+  EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), 4);
 
   // Still: nothing to trim; the count starts over and the 4 kept frames fade out over sss.frames
   // (issue 38): after n still frames a texel that held 4 holds n + 4 (1 − n / sss.frames).
   const int frames = s.settings().sss.frames;
   for (int n = 1; n <= 3; ++n) {
     s.render(1.25);
-    EXPECT_EQ(s.renderer().radiosityMaps()->frames(), n);
+    EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), n);
     const float expected = n + 4.0f * (1.0f - static_cast<float>(n) / frames);
     EXPECT_NEAR(mapCounts(s, expected).maxFrames, expected, 1e-3f) << "still frame " << n;
   }
   for (int n = 4; n <= frames; ++n) s.render(1.25);
-  EXPECT_EQ(s.renderer().radiosityMaps()->frames(), frames);
+  EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), frames);
   EXPECT_NEAR(mapCounts(s, static_cast<float>(frames)).maxFrames, static_cast<float>(frames), 1e-3f)
       << "the kept frames are gone: sss.frames fresh frames";
 
@@ -761,7 +761,7 @@ TEST(MapHistory, WhileTheBlobMovesTexelsKeepAtMostHistoryFramesAndResetWhereTheS
   for (int f = 0; f < 6; ++f) restart.render(1.0 + 0.05 * f);
   const MapCounts r = mapCounts(restart, 1.0f);
   EXPECT_NEAR(r.maxFrames, 1.0f, 1e-6f);
-  EXPECT_EQ(restart.renderer().radiosityMaps()->frames(), 1);
+  EXPECT_EQ(restart.renderer().module<sss::RadiosityMaps>()->frames(), 1);
 }
 
 /// gpu::imageError's relative RMSE of a against b over the pixels of `mask` (non-zero).
@@ -791,11 +791,11 @@ TEST(MapHistory, AStillAfterMotionConvergesToTheHistoryFreeStill) {
   }
   const double pause = start + 0.25 * 5;
   gpu::Image still, eight, nine, freeStill;
-  while (history.renderer().radiosityMaps()->frames() < frames) still = history.render(pause);
-  while (restart.renderer().radiosityMaps()->frames() < frames) {
+  while (history.renderer().module<sss::RadiosityMaps>()->frames() < frames) still = history.render(pause);
+  while (restart.renderer().module<sss::RadiosityMaps>()->frames() < frames) {
     freeStill = restart.render(pause);
-    if (restart.renderer().radiosityMaps()->frames() == 8) eight = freeStill;
-    if (restart.renderer().radiosityMaps()->frames() == 9) nine = freeStill;
+    if (restart.renderer().module<sss::RadiosityMaps>()->frames() == 8) eight = freeStill;
+    if (restart.renderer().module<sss::RadiosityMaps>()->frames() == 9) nine = freeStill;
   }
   const std::vector<std::uint8_t> wax = restart.renderer().translucentMask();
   const double floor = relativeRmse(eight, nine, wax), error = relativeRmse(still, freeStill, wax);
@@ -827,14 +827,14 @@ TEST(MapHistory, AStillAfterMotionFadesTheHistoryAlsoWhenItHoldsSssFramesAlready
     history.render(start + 0.25 * f);
     restart.render(start + 0.25 * f);
   }
-  ASSERT_GE(history.renderer().radiosityMaps()->frames(), 4) << "the motion left sss.frames frames of history";
+  ASSERT_GE(history.renderer().module<sss::RadiosityMaps>()->frames(), 4) << "the motion left sss.frames frames of history";
   const double pause = start + 0.25 * 7;
   gpu::Image still, freeStill;
   for (int f = 0; f < 6; ++f) {
     still = history.render(pause);
     freeStill = restart.render(pause);
   }
-  EXPECT_EQ(history.renderer().radiosityMaps()->frames(), 4);
+  EXPECT_EQ(history.renderer().module<sss::RadiosityMaps>()->frames(), 4);
   const double error = relativeRmse(still, freeStill, restart.renderer().translucentMask());
   std::printf("[ history ] sss.frames = 4, history 8: the still after motion vs the history-free still %.5f\n", error);
   EXPECT_LT(error, 1e-3);
@@ -856,10 +856,10 @@ TEST(MapHistory, AChangeOfKKeepsTheMapsWhoseDirectionsStay) {
   PresetSession s("bunny", {"render.width=64", "render.height=48", "sss.maps=8", "sss.samples=1",
                             "sss.map_size=64", "sss.light_map_size=128", "vpl.count=0", "sss.frames=32"});
   for (int f = 0; f < 4; ++f) s.render(0.0);
-  const std::vector<sss::MapView> before = s.renderer().radiosityMaps()->views();
+  const std::vector<sss::MapView> before = s.renderer().module<sss::RadiosityMaps>()->views();
   s.settings().sss.maps = 12;
   s.render(0.0);
-  const sss::RadiosityMaps& maps = *s.renderer().radiosityMaps();
+  const sss::RadiosityMaps& maps = *s.renderer().module<sss::RadiosityMaps>();
   ASSERT_EQ(maps.views().size(), 12u);
   for (std::size_t i = 0; i < before.size(); ++i)
     EXPECT_EQ(maps.views()[i].direction, before[i].direction) << "map " << i;
@@ -870,13 +870,13 @@ TEST(MapHistory, AChangeOfKKeepsTheMapsWhoseDirectionsStay) {
   // Fewer maps: the first six keep theirs.
   s.settings().sss.maps = 6;
   s.render(0.0);
-  most = layerFrames(s.renderer().radiosityMaps()->maps());
+  most = layerFrames(s.renderer().module<sss::RadiosityMaps>()->maps());
   ASSERT_EQ(most.size(), 6u);
   for (float m : most) EXPECT_FLOAT_EQ(m, 6.0f);
   // Anything else restarts them all.
   s.settings().sss.samples = 2;
   s.render(0.0);
-  for (float m : layerFrames(s.renderer().radiosityMaps()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
+  for (float m : layerFrames(s.renderer().module<sss::RadiosityMaps>()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
   // So does a change of K while a still after motion fades its kept frames out: kept maps would
   // hold what is left of them for good.
   s.render(0.0);
@@ -885,23 +885,23 @@ TEST(MapHistory, AChangeOfKKeepsTheMapsWhoseDirectionsStay) {
   s.render(0.0);  // the still starts, its fade with it
   s.settings().sss.maps = 8;
   s.render(0.0);
-  for (float m : layerFrames(s.renderer().radiosityMaps()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
+  for (float m : layerFrames(s.renderer().module<sss::RadiosityMaps>()->maps())) EXPECT_FLOAT_EQ(m, 1.0f);
 }
 
 TEST(MapHistory, ASettingThatChangesTheEstimateRestartsTheMaps) {
   PresetSession s("blob", movingBlobSets(4));
   for (int f = 0; f < 3; ++f) s.render(1.0);
-  EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 3);
+  EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), 3);
   s.settings().sss.samples = 2;  // another estimator: its history does not hold
   s.render(1.05);
-  EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 1);
+  EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), 1);
   EXPECT_NEAR(mapCounts(s, 1.0f).maxFrames, 1.0f, 1e-6f);
 }
 
 /// Σ over the map texels holding frames of their mean B (rgb / alpha), per band.
 glm::dvec3 mapMeanTotal(PresetSession& s) {
   glm::dvec3 total(0.0);
-  for (const glm::vec4& t : readLayers(s.renderer().radiosityMaps()->maps()))
+  for (const glm::vec4& t : readLayers(s.renderer().module<sss::RadiosityMaps>()->maps()))
     if (t.a > 0.0f) total += glm::dvec3(t) / static_cast<double>(t.a);
   return total;
 }
@@ -928,7 +928,7 @@ TEST(MapHistory, TheKeptHistoryFollowsALightThatTurnsWhileTheSurfaceHolds) {
     const glm::dvec3 before = mapMeanTotal(s);
     s.scene().lights[0].direction = turned;
     s.render(0.0);
-    EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 5) << "a light that turns is not a restart with sss.history";
+    EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), 5) << "a light that turns is not a restart with sss.history";
     const glm::dvec3 after = mapMeanTotal(s);
     for (int c = 0; c < 3; ++c) {
       const double ratio = after[c] / expected[c];
@@ -959,7 +959,7 @@ TEST(MapHistory, TheKeptHistoryFollowsALightWhoseBrightnessChanges) {
   for (int f = 0; f < 4; ++f) s.render(0.0);
   s.scene().lights[0].intensity *= 0.9f;
   s.render(0.0);
-  EXPECT_EQ(s.renderer().radiosityMaps()->frames(), 5) << "a light that dims is not a restart with sss.history";
+  EXPECT_EQ(s.renderer().module<sss::RadiosityMaps>()->frames(), 5) << "a light that dims is not a restart with sss.history";
   const glm::dvec3 after = mapMeanTotal(s);
   for (int c = 0; c < 3; ++c) {
     std::printf("[ history ] slab, light at 0.9, band %d: after / restart %.4f\n", c, after[c] / expected[c]);

@@ -258,8 +258,8 @@ TEST(Sslpv, VoxelisedSphereHasTheMeshVolume) {
   PresetSession s(shapePreset(dir, R"({"shape": "sphere", "scale": 0.05, "position": [0, 0.05, 0],
                                        "material": "Marble"})", 32));
   s.render();
-  const auto& medium = s.renderer().sslpv()->medium();
-  const float cell = s.renderer().sslpv()->grid().cell;
+  const auto& medium = s.renderer().module<sss::Sslpv>()->medium();
+  const float cell = s.renderer().module<sss::Sslpv>()->grid().cell;
   double voxels = 0.0;
   int flagged = 0;
   for (const glm::vec4& c : readGrid(medium.scattering())) voxels += c.a;
@@ -295,7 +295,7 @@ TEST(Sslpv, MediumGridHoldsTheVolumesMaterialPerCell) {
     PresetSession s(shapePreset(dir, R"({"shape": "box", "size": [0.1, 0.1, 0.1], "position": [0, 0.05, 0],
         "rotation_deg": )" + c.rotation + R"(, "material": "Marble", "volume": {)" + inner + ", " + c.volume + "}}", 16));
     s.render();
-    const sss::Sslpv& lpv = *s.renderer().sslpv();
+    const sss::Sslpv& lpv = *s.renderer().module<sss::Sslpv>();
     const sss::SslpvGrid g = lpv.grid();
     const sss::SceneObject& o = s.scene().objects[0];
     const sss::MaterialVolume& v = *o.volume;
@@ -399,7 +399,7 @@ TEST(Sslpv, FiniteOnHardCases) {
     sets.insert(sets.end(), c.sets.begin(), c.sets.end());
     PresetSession s(c.preset, sets);
     EXPECT_TRUE(allFinite(s.render()));
-    const sss::Sslpv* lpv = s.renderer().sslpv();
+    const sss::Sslpv* lpv = s.renderer().module<sss::Sslpv>();
     ASSERT_NE(lpv, nullptr);
     double flux = 0.0;
     for (const gpu::Texture& band : lpv->propagation().accumulation())

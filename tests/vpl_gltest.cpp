@@ -66,7 +66,7 @@ TEST(Vpl, SolidAngleAreasAddUpToTheSurfaceArea) {
   PresetSession s(preset, with(kCheapMaps, {"render.width=16", "render.height=16", "vpl.count=4096",
                                             "vpl.placement=all", "vpl.cube_size=256"}));
   s.render();
-  const sss::VirtualPointLights* vpls = s.renderer().virtualPointLights();
+  const sss::VirtualPointLights* vpls = s.renderer().module<sss::VirtualPointLights>();
   ASSERT_NE(vpls, nullptr);
   const std::vector<sss::VplRecord> records = vpls->read();
   ASSERT_EQ(records.size(), 4096u);
@@ -101,7 +101,7 @@ TEST(Vpl, SolidAngleAreasAddUpToTheSurfaceArea) {
   // The paper's Eq. 16 weight: A_box / N each.
   s.settings().vpl.area = sss::VplArea::BoundingBox;
   s.render();
-  for (const sss::VplRecord& r : s.renderer().virtualPointLights()->read())
+  for (const sss::VplRecord& r : s.renderer().module<sss::VirtualPointLights>()->read())
     EXPECT_NEAR(r.normal.w, 6 * a * a / 4096, 1e-4 * 6 * a * a / 4096);
 }
 
@@ -116,7 +116,7 @@ TEST(Vpl, FluxMatchesADenseEstimateWithinSamplingError) {
                                               "vpl.placement=all", "sss.frames=1", "sss.samples=16"}));
     s.render();
     glm::dvec3 sum(0.0);
-    for (const sss::VplRecord& r : s.renderer().virtualPointLights()->read()) {
+    for (const sss::VplRecord& r : s.renderer().module<sss::VirtualPointLights>()->read()) {
       const glm::dvec3 b = kPi * glm::dvec3(glm::vec3(r.radiance));  // B = π (B/π)
       sum += b * static_cast<double>(r.normal.w);
       if (perDirection) perDirection->push_back(n * (b.x + b.y + b.z) * r.normal.w);
@@ -205,11 +205,11 @@ TEST(Vpl, VplsLightTheFloorAsPointsFarAndThroughTheirCellsPartsNear) {
   PresetSession off(preset, with(base, {"vpl.count=0"}));
   PresetSession on(preset, with(base, {"vpl.count=3"}));
   const gpu::Image without = off.render(), withVpls = on.render();
-  const std::vector<sss::VplRecord> records = on.renderer().virtualPointLights()->read();
-  const std::vector<sss::VplRecord> parts = on.renderer().virtualPointLights()->readParts();
+  const std::vector<sss::VplRecord> records = on.renderer().module<sss::VirtualPointLights>()->read();
+  const std::vector<sss::VplRecord> parts = on.renderer().module<sss::VirtualPointLights>()->readParts();
   constexpr std::size_t kParts = sss::kVplParts;
   ASSERT_EQ(parts.size(), kParts * records.size());
-  const glm::dvec3 centre(on.renderer().virtualPointLights()->centre());
+  const glm::dvec3 centre(on.renderer().module<sss::VirtualPointLights>()->centre());
   int compared = 0, lit = 0, near = 0, patches = 0;
   double worst = 0.0, worstOfPeak = 0.0;
   struct Value { int i, j, c; double expected, measured; };
@@ -298,7 +298,7 @@ TEST(Vpl, AHiddenLightReachesTheTableOnlyThroughTheVpls) {
   EXPECT_EQ(darkMax, 0.0) << "the table sees the flame directly: the scene does not test what it should";
   EXPECT_GT(litPixels, 8 * 64 * 9 / 10);
   // The light is surrounded, so placement auto puts VPLs on backlit surface only.
-  const sss::VirtualPointLights* vpls = on.renderer().virtualPointLights();
+  const sss::VirtualPointLights* vpls = on.renderer().module<sss::VirtualPointLights>();
   const glm::vec3 flame = on.scene().lights[0].position;
   int active = 0;
   for (const sss::VplRecord& r : vpls->read()) {
@@ -319,7 +319,7 @@ TEST(Vpl, ConvergedFramesSkipThePassAndNothingTurnsNan) {
     const std::string preset = write(dir, "cube", cubeScene(edge, edge, {0.0, 1.0, 0.0}, 4 * edge));
     PresetSession s(preset, with(kCheapMaps, {"render.width=24", "render.height=24", "vpl.count=4096", "sss.frames=1"}));
     ASSERT_TRUE(allFinite(s.render())) << "edge " << edge;
-    for (const sss::VplRecord& r : s.renderer().virtualPointLights()->read())
+    for (const sss::VplRecord& r : s.renderer().module<sss::VirtualPointLights>()->read())
       ASSERT_TRUE(std::isfinite(r.radiance.r) && std::isfinite(r.normal.w) && std::isfinite(r.position.x));
     // Maps converged and VPLs stable: the second frame runs neither.
     for (const sss::PlannedPass& p : s.renderer().planFrame(s.scene(), s.settings(), 0.0)) EXPECT_NE(p.name, "vpl");

@@ -269,7 +269,7 @@ RowResult runRow(const Case& c, const ReferenceGroup& ref, const gpu::ShaderLibr
   row.convergedFrames = static_cast<int>(row.convergedMs.size());
   row.gpuBytes = renderer.gpuBytes();
   row.triangles = renderer.triangleCount();
-  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
+  if (const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>()) {
     row.mapsBytes = maps->bytes();
     if (maps->mapSize() > 0) row.mapSize = maps->mapSize();  // 0: the method drew no maps (no-cache)
     if (!maps->views().empty()) row.maps = static_cast<int>(maps->views().size());

@@ -64,7 +64,7 @@ namespace {
 /// back, so it is computed once, when the frames are done (or stopped).
 nlohmann::json finalSummary(const sss::Renderer& renderer, const Config& config) {
   nlohmann::json summary;
-  if (const sss::RadiosityMaps* maps = renderer.radiosityMaps()) {
+  if (const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>()) {
     const sss::MapCoverage coverage = renderer.mapCoverage();
     nlohmann::json pearling = nlohmann::json::array();
     for (const auto& w : sss::pearlingWarnings(config.scene, maps->sphere().radius, maps->lightMapSize())) {
@@ -99,7 +99,7 @@ nlohmann::json finalSummary(const sss::Renderer& renderer, const Config& config)
                {"unseen_share", coverage.unseenShare()},
                {"pearling", pearling}};
   }
-  if (const sss::Sslpv* lpv = renderer.sslpv()) {
+  if (const sss::Sslpv* lpv = renderer.module<sss::Sslpv>()) {
     const sss::SslpvGrid& g = lpv->grid();
     summary["sslpv"] = {{"grid", g.size},
                         {"cell_mm", g.cellMm()},

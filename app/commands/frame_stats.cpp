@@ -32,7 +32,7 @@ std::size_t residentBytes() {
 }
 
 nlohmann::json mapsRecord(const sss::Renderer& renderer) {
-  const sss::RadiosityMaps* maps = renderer.radiosityMaps();
+  const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>();
   if (!maps) return nullptr;
   return {{"maps", maps->views().size()}, {"frames_accumulated", maps->frames()}, {"map_bytes", maps->bytes()}};
 }

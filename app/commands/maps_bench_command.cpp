@@ -171,7 +171,7 @@ int runProbeMaps(const ProbeMapsOptions& o) {
       frameMs.push_back(timings.gpuTotalMs);
       if (mapsMs.back() < 0.0) throw std::runtime_error("probe maps: sss.maps did not run in a timed frame");
     }
-    const sss::RadiosityMaps* maps = renderer.radiosityMaps();
+    const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>();
     if (!maps) throw std::runtime_error("probe maps: the renderer made no radiosity maps");
     const std::size_t shaded = shadedTexels(maps->maps());
     const std::size_t texels = static_cast<std::size_t>(c.k) * static_cast<std::size_t>(maps->maps().width()) *

@@ -219,7 +219,7 @@ void ViewPanel::drawFeedback(const ViewSession& session, const ViewFeedback& fee
   ImGui::Text("wall %.1f ms (%.3g fps)   CPU %.1f ms   GPU %.1f ms", f.wallMs, f.wallMs > 0.0 ? 1000.0 / f.wallMs : 0.0,
               f.gpu.cpuTotalMs, f.shown.gpuKnown() ? f.shown.gpuTotalMs : 0.0);
   drawTimingGraph();
-  const sss::RadiosityMaps* maps = session.renderer().radiosityMaps();
+  const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
   if (maps && sss::RadiosityMaps::applies(session.config().scene, session.config().render))
     ImGui::Text("maps: K %zu, %d of %d frames accumulated", maps->views().size(), maps->frames(),
                 session.config().render.sss.frames);
@@ -320,7 +320,7 @@ void ViewPanel::drawDebugView(const ViewSession& session, sss::DebugView& debug,
       if (layer && layer->cube) ImGui::SliderInt("cube face", &debug.layer, 0, 5);
     }
   } else if (debug.kind == sss::DebugViewKind::Map) {
-    const sss::RadiosityMaps* maps = session.renderer().radiosityMaps();
+    const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
     const int k = maps ? maps->maps().depth() : 0;
     if (k > 0) {
       ImGui::SliderInt("map k", &debug.layer, 0, k - 1);

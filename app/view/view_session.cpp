@@ -49,7 +49,7 @@ std::string ViewSession::loadPreset(const std::string& nameOrPath) {
 }
 
 std::optional<std::int64_t> ViewSession::autoChoice(std::string_view key) const {
-  const sss::RadiosityMaps* maps = renderer_->radiosityMaps();
+  const sss::RadiosityMaps* maps = renderer_->module<sss::RadiosityMaps>();
   int chosen = 0;
   if (key == "sss.maps") chosen = renderer_->chosenMapCount(loaded_.config.scene, loaded_.config.render);
   else if (key == "sss.map_size" && maps) chosen = maps->mapSize();

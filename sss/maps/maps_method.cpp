@@ -29,6 +29,15 @@ void append(std::vector<std::string>& to, const std::vector<std::string>& from) 
 
 RadiosityMaps& maps(FrameContext& context) { return context.modules.obtain<RadiosityMaps>(context.shaders); }
 
+/// The light G-buffers the gather reads (the maps' and no-cache's).
+void addLightGBuffers(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes, FrameMemory& m) {
+  if (!RadiosityMaps::needsLightGBuffers(scene, settings)) return;
+  const int directional = countLights(scene, LightKind::Directional), point = countLights(scene, LightKind::Point);
+  const auto [size, text] = budgetSize("sss.light_map_size", sizes.lightMapSize, settings.sss.lightMapSize);
+  m.add("light G-buffers", std::to_string(directional) + " directional and " + std::to_string(point) + " point light(s) at " + text,
+        lightGBufferBytes(directional, point, size));
+}
+
 /// A size setting as --explain prints it: the texels, or "auto" (chosen when the pass runs).
 std::string sizeText(int size) { return size == kAuto ? std::string("auto") : std::to_string(size); }
 
@@ -156,8 +165,41 @@ std::vector<Pass*> RadiosityMapsMethod::passes(const FrameState& state) {
   return p;
 }
 
-SurfaceShading RadiosityMapsMethod::shading(const FrameState& state) const {
-  return anyTranslucent(state.scene) ? SurfaceShading::Algorithm1 : SurfaceShading::None;
+bool RadiosityMapsMethod::shadesTranslucent(const FrameState& state) const { return anyTranslucent(state.scene); }
+
+bool RadiosityMapsMethod::choosesMapCount(const FrameState& state) const {
+  return state.settings.sss.maps == kAuto && state.scene.mapDirections.empty() &&
+         RadiosityMaps::applies(state.scene, state.settings);
+}
+
+bool RadiosityMapsMethod::countsVplCoverage(const FrameState& state) const {
+  return VirtualPointLights::applies(state.scene, state.settings);
+}
+
+void RadiosityMapsMethod::addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
+                                    FrameMemory& m) const {
+  addLightGBuffers(scene, settings, sizes, m);
+  const SssSettings& s = settings.sss;
+  if (RadiosityMaps::applies(scene, settings)) {
+    const int k = mapCount(scene, settings);
+    const auto [size, text] = budgetSize("sss.map_size", sizes.mapSize, s.mapSize);
+    const std::string count = s.maps == kAuto && scene.mapDirections.empty()
+                                  ? "sss.maps=auto (at most " + std::to_string(k) + ")"
+                                  : "sss.maps=" + std::to_string(k);
+    m.add("radiosity maps", count + " × " + text, radiosityMapBytes(k, size, s.computeGather, s.history > 0));
+  }
+  if (VirtualPointLights::applies(scene, settings)) {
+    const VplSettings& v = settings.vpl;
+    m.add("VPLs", "vpl.count=" + std::to_string(v.count) + ", " + squareText("vpl.cube_size", v.cubeSize), vplBytes(v));
+    m.add("VPL shadow maps",
+          "vpl.shadow_clusters=" + std::to_string(v.shadowClusters) + " × " + squareText("vpl.shadow_size", v.shadowSize),
+          vplShadowBytes(v));
+  }
+}
+
+void NoCacheMethod::addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
+                              FrameMemory& m) const {
+  addLightGBuffers(scene, settings, sizes, m);
 }
 
 std::string RadiosityMapsMethod::describeShading(const FrameState&) const {
@@ -170,18 +212,17 @@ PassIo RadiosityMapsMethod::surfaceIo(const FrameState& state) const {
   return io;
 }
 
-void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit,
-                                      bool active) const {
+void RadiosityMapsMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit) const {
   const GLuint mapsUnit = firstUnit, depthUnit = firstUnit + 1, vplShadowUnit = firstUnit + 2;
   const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
-  if (active && maps && shading(context.state) == SurfaceShading::Algorithm1) {
+  if (maps && shadesTranslucent(context.state)) {
     maps->setAlgorithm1Uniforms(p, context.settings(), mapsUnit, depthUnit, true, false);
   } else {
     p.set("uMaps", static_cast<int>(mapsUnit));
     p.set("uMapDepth", static_cast<int>(depthUnit));
     p.set("uMapCount", 0);
   }
-  const bool vpls = active && VirtualPointLights::applies(context.scene(), context.settings());
+  const bool vpls = VirtualPointLights::applies(context.scene(), context.settings());
   VirtualPointLights::setReceiverUniforms(p, vpls ? context.modules.find<VirtualPointLights>() : nullptr,
                                           vplShadowUnit);
 }
@@ -196,9 +237,7 @@ std::vector<Pass*> NoCacheMethod::passes(const FrameState& state) {
   return {gbuffer_.get()};
 }
 
-SurfaceShading NoCacheMethod::shading(const FrameState& state) const {
-  return anyTranslucent(state.scene) ? SurfaceShading::Gather : SurfaceShading::None;
-}
+bool NoCacheMethod::shadesTranslucent(const FrameState& state) const { return anyTranslucent(state.scene); }
 
 std::string NoCacheMethod::describeShading(const FrameState& state) const {
   return "translucent ones by the gather per pixel against the light G-buffers (no-cache: " +
@@ -212,15 +251,15 @@ PassIo NoCacheMethod::surfaceIo(const FrameState&) const {
   return io;
 }
 
-void NoCacheMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit, bool active) const {
-  // The gather's samplers on their own units even when unused: a sampler left on unit 0 would clash
-  // with the shadow map's type there and void every draw.
+void NoCacheMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit) const {
+  // The gather's samplers on their own units even when there is nothing to gather: a sampler left on
+  // unit 0 would clash with the shadow map's type there and void every draw.
   p.set("uSssDirPosition", static_cast<int>(firstUnit));
   p.set("uSssDirNormal", static_cast<int>(firstUnit + 1));
   p.set("uSssPointGPosition", static_cast<int>(firstUnit + 2));
   p.set("uSssPointGNormal", static_cast<int>(firstUnit + 3));
   const RadiosityMaps* maps = context.modules.find<RadiosityMaps>();
-  if (active && maps && shading(context.state) == SurfaceShading::Gather)
+  if (maps && shadesTranslucent(context.state))
     maps->setGatherUniforms(p, context.scene(), context.settings(), firstUnit, context.cameraFrame);
 }
 

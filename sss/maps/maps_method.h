@@ -67,11 +67,16 @@ class RadiosityMapsMethod final : public TranslucencyMethod {
   SssMethod id() const override { return SssMethod::RadiosityMaps; }
   void checkLimits(const FrameState& state) const override;
   std::vector<Pass*> passes(const FrameState& state) override;
-  SurfaceShading shading(const FrameState& state) const override;
+  bool shadesTranslucent(const FrameState& state) const override;
+  std::string surfaceShader() const override { return "maps/surface_algorithm1.glsl"; }
+  bool choosesMapCount(const FrameState& state) const override;
+  void addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
+                 FrameMemory& memory) const override;
+  bool countsVplCoverage(const FrameState& state) const override;
   std::string describeShading(const FrameState& state) const override;
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 3; }  ///< the maps, their depth, the VPLs' shadow cubes
-  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
+  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit) const override;
   /// The maps' accumulated frames: the frame after k frames of map samples weighs k.
   double stillWeight(const FrameContext& context) const override;
 
@@ -86,11 +91,14 @@ class NoCacheMethod final : public TranslucencyMethod {
   explicit NoCacheMethod(std::shared_ptr<LightGBufferPass> gbuffer) : gbuffer_(std::move(gbuffer)) {}
   SssMethod id() const override { return SssMethod::NoCache; }
   std::vector<Pass*> passes(const FrameState& state) override;
-  SurfaceShading shading(const FrameState& state) const override;
+  bool shadesTranslucent(const FrameState& state) const override;
+  std::string surfaceShader() const override { return "maps/surface_gather.glsl"; }
+  void addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
+                 FrameMemory& memory) const override;
   std::string describeShading(const FrameState& state) const override;
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 4; }  ///< the light G-buffers the gather reads
-  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
+  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit) const override;
 
  private:
   std::shared_ptr<LightGBufferPass> gbuffer_;

@@ -76,8 +76,14 @@ std::vector<Pass*> ImageSpaceMethod::passes(const FrameState& state) {
   return {&gbuffer_, &scatter_, &combine_};
 }
 
-SurfaceShading ImageSpaceMethod::shading(const FrameState& state) const {
-  return anyTranslucent(state.scene) ? SurfaceShading::ImageSpace : SurfaceShading::None;
+bool ImageSpaceMethod::shadesTranslucent(const FrameState& state) const { return anyTranslucent(state.scene); }
+
+void ImageSpaceMethod::addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes&,
+                                 FrameMemory& m) const {
+  if (!ImageSpaceSss::applies(scene, settings)) return;
+  m.add("image-space buffers",
+        "render.width × render.height=" + std::to_string(settings.width) + "x" + std::to_string(settings.height),
+        imageSpaceBytes(settings.width, settings.height, translucentObjectCount(scene), settings.imageSpace));
 }
 
 std::string ImageSpaceMethod::describeShading(const FrameState&) const {
@@ -88,9 +94,9 @@ PassIo ImageSpaceMethod::surfaceIo(const FrameState&) const {
   return {{resource::kImageSpaceAccumulation, "image_space.renormalize"}, {}, {}};
 }
 
-void ImageSpaceMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit, bool active) const {
+void ImageSpaceMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit) const {
   const ImageSpaceSss* is = context.modules.find<ImageSpaceSss>();
-  const bool shades = active && shading(context.state) == SurfaceShading::ImageSpace;
+  const bool shades = shadesTranslucent(context.state);
   ImageSpaceSss::setSurfaceUniforms(p, shades ? is : nullptr, context.settings(), firstUnit);
 }
 

@@ -49,11 +49,14 @@ class ImageSpaceMethod final : public TranslucencyMethod {
   SssMethod id() const override { return SssMethod::ImageSpace; }
   void checkLimits(const FrameState& state) const override;
   std::vector<Pass*> passes(const FrameState& state) override;
-  SurfaceShading shading(const FrameState& state) const override;
+  bool shadesTranslucent(const FrameState& state) const override;
+  std::string surfaceShader() const override { return "peers/image_space/surface.glsl"; }
+  void addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
+                 FrameMemory& memory) const override;
   std::string describeShading(const FrameState& state) const override;
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 2; }  ///< the accumulated estimate and coverage
-  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
+  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit) const override;
   /// The frames its estimate has accumulated (image_space.frames at most).
   double stillWeight(const FrameContext& context) const override;
 

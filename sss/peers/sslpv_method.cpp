@@ -70,8 +70,17 @@ std::vector<Pass*> SslpvMethod::passes(const FrameState& state) {
   return {&voxelize_, &gbuffer_, &inject_, &propagate_};
 }
 
-SurfaceShading SslpvMethod::shading(const FrameState& state) const {
-  return anyTranslucent(state.scene) ? SurfaceShading::Sslpv : SurfaceShading::None;
+bool SslpvMethod::shadesTranslucent(const FrameState& state) const { return anyTranslucent(state.scene); }
+
+void SslpvMethod::addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes&,
+                            FrameMemory& m) const {
+  if (!Sslpv::applies(scene, settings)) return;
+  const SslpvSettings& v = settings.sslpv;
+  int directional = 0, point = 0;
+  for (const Light& l : scene.lights) (l.kind == LightKind::Directional ? directional : point)++;
+  m.add("SSLPV grids", "sslpv.grid=" + std::to_string(v.grid) + "³", Sslpv::gridBytes(v.grid, translucentObjectCount(scene)));
+  m.add("SSLPV light G-buffers", squareText("sslpv.inject_size", v.injectSize),
+        lightGBufferBytes(directional, point, v.injectSize));
 }
 
 std::string SslpvMethod::describeShading(const FrameState&) const {
@@ -82,9 +91,9 @@ PassIo SslpvMethod::surfaceIo(const FrameState&) const {
   return {{resource::kSslpvAccumulation, resource::kSslpvMedium, "sslpv.exitance"}, {}, {}};
 }
 
-void SslpvMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit, bool active) const {
+void SslpvMethod::bindSurface(gpu::Program& p, const FrameContext& context, GLuint firstUnit) const {
   const Sslpv* grids = context.modules.find<Sslpv>();
-  if (active && grids && shading(context.state) == SurfaceShading::Sslpv)
+  if (grids && shadesTranslucent(context.state))
     grids->setLookupUniforms(p, context.settings(), firstUnit);
   else
     Sslpv::setLookupOff(p, firstUnit);

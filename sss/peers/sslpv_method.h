@@ -54,11 +54,14 @@ class SslpvMethod final : public TranslucencyMethod {
   SssMethod id() const override { return SssMethod::Sslpv; }
   void checkLimits(const FrameState& state) const override;
   std::vector<Pass*> passes(const FrameState& state) override;
-  SurfaceShading shading(const FrameState& state) const override;
+  bool shadesTranslucent(const FrameState& state) const override;
+  std::string surfaceShader() const override { return "peers/sslpv/surface.glsl"; }
+  void addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
+                 FrameMemory& memory) const override;
   std::string describeShading(const FrameState& state) const override;
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 4; }  ///< the accumulation grid per band, the medium
-  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit, bool active) const override;
+  void bindSurface(gpu::Program& program, const FrameContext& context, GLuint firstUnit) const override;
 
  private:
   SslpvVoxelizePass voxelize_;
