@@ -134,8 +134,8 @@ void Renderer::takeMapCoverage(const Scene& scene, const RenderSettings& setting
   if (counts->vpls) {
     vplCoverage_ = counts->vpls;
     vplCoverageMaps_ = counts->maps;
-  } else if (vplCoverage_ && vplCoverageMaps_ == counts->maps &&
-             plan_.method(FrameState{scene, settings, 0.0, 0}).countsVplCoverage(FrameState{scene, settings, 0.0, 0})) {
+  } else if (const FrameState state{scene, settings, 0.0, 0};
+             vplCoverage_ && vplCoverageMaps_ == counts->maps && plan_.method(state).countsVplCoverage(state)) {
     counts->vpls = vplCoverage_;
   }
   mapCountChooser_.update(*counts);
