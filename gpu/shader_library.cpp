@@ -66,7 +66,7 @@ std::optional<std::string> includeTarget(std::string_view line, const std::vecto
   line = trimLeft(line.substr(1));
   if (!line.starts_with("include")) return std::nullopt;
   line = trimLeft(line.substr(7));
-  if (!line.empty() && line.front() != '"') {
+  if (!line.empty() && (std::isalpha(static_cast<unsigned char>(line.front())) || line.front() == '_')) {
     std::size_t end = 0;
     while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '_')) ++end;
     const std::string name(line.substr(0, end));

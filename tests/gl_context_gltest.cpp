@@ -4,6 +4,8 @@
 #include "gpu/gl_context.h"
 #include "gpu/program.h"
 #include "support/temp_dir.h"
+#include "sss/frame_plan.h"
+#include "sss/translucency_method.h"
 
 namespace tallow {
 namespace {
@@ -62,7 +64,11 @@ TEST(GlContext, AllEmbeddedPassesCompileAndLink) {
   gpu::ContextOptions options;
   auto context = gpu::GlContext::create(options);
   const gpu::ShaderLibrary lib;
-  EXPECT_NO_THROW(gpu::Program(lib, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}}}));
+  // The camera pass: one variant per translucency method (its file as TALLOW_SURFACE_METHOD).
+  for (const auto& method : sss::makeTranslucencyMethods())
+    EXPECT_NO_THROW(gpu::Program(lib, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}},
+                                       {"TALLOW_SURFACE_METHOD \"" + method->surfaceShader() + "\""}}))
+        << method->surfaceShader();
   EXPECT_NO_THROW(gpu::Program(lib, {{{GL_VERTEX_SHADER, "shadow_depth.vert"}, {GL_FRAGMENT_SHADER, "shadow_depth.frag"}}}));
   EXPECT_NO_THROW(gpu::Program(lib, {{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}}}));
 }

@@ -14,6 +14,7 @@
 #include "gpu/shader_library.h"
 #include "sss/frame_plan.h"
 #include "sss/translucency_method.h"
+#include "support/temp_dir.h"
 
 namespace tallow {
 namespace {
@@ -92,6 +93,12 @@ TEST(SurfaceVariants, AnIncludeOfAnUndefinedNameIsOneClearError) {
   EXPECT_EQ(s.text.find("scatteredRadiosity(vec3 xo, vec3 no, vec3 dpdx"), std::string::npos)
       << "the no-cache variant holds Algorithm 1";
   EXPECT_EQ(s.text.find("#define TALLOW_SURFACE_METHOD"), std::string::npos) << "a path is no GLSL define";
+  // `#include <x>` (C headers shared with GLSL, e.g. PNanoVDB.h inside its #if C branch) is no
+  // include of ours and stays as written.
+  test::TempDir dir;
+  dir.write("c_branch.glsl", "#version 450 core\n#if defined(C_ONLY)\n#include <stdint.h>\n#endif\n");
+  const gpu::ShaderLibrary own(dir.path());
+  EXPECT_NE(own.expand("c_branch.glsl").text.find("#include <stdint.h>"), std::string::npos);
 }
 
 }  // namespace
