@@ -20,9 +20,7 @@ std::vector<std::unique_ptr<TranslucencyMethod>> makeTranslucencyMethods() {
   return m;
 }
 
-FramePlan::FramePlan() : methods_(makeTranslucencyMethods()), camera_(*methods_.front()) {
-  for (const auto& m : methods_) methodViews_.push_back(m.get());
-}
+FramePlan::FramePlan() : methods_(makeTranslucencyMethods()), camera_(*methods_.front()) {}
 
 TranslucencyMethod& FramePlan::method(const FrameState& state) {
   for (const auto& m : methods_)

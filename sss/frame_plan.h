@@ -33,8 +33,6 @@ class FramePlan {
 
   /// The method `state.settings.sss.method` selects.
   TranslucencyMethod& method(const FrameState& state);
-  /// Every method, in makeTranslucencyMethods() order.
-  const std::vector<const TranslucencyMethod*>& methods() const { return methodViews_; }
   /// The passes of a frame in `state`, in the order they run.
   std::vector<Pass*> passes(const FrameState& state);
   /// passes(state) with their reasons.
@@ -46,7 +44,6 @@ class FramePlan {
   DirectionalShadowPass directionalShadow_;
   PointShadowPass pointShadow_;
   std::vector<std::unique_ptr<TranslucencyMethod>> methods_;
-  std::vector<const TranslucencyMethod*> methodViews_;
   CameraPass camera_;
   FlamePass flame_;
   StillAveragePass still_;

@@ -161,27 +161,24 @@ std::pair<int, std::string> budgetSize(const char* key, int chosen, int setting)
 
 FrameMemory frameMemory(const Scene& scene, const RenderSettings& settings, int lightMapSize, int mapSize) {
   FrameMemory m;
-  const auto add = [&](std::string name, std::string sizedBy, std::size_t bytes) {
-    m.add(std::move(name), std::move(sizedBy), bytes);
-  };
   int fields = 0;
   for (const SceneObject& o : scene.objects) fields += o.shape == ShapeKind::Field ? 1 : 0;
-  add("dual contouring", std::to_string(fields) + " field object(s) at field.res=" + std::to_string(settings.fieldRes) + "³",
+  m.add("dual contouring", std::to_string(fields) + " field object(s) at field.res=" + std::to_string(settings.fieldRes) + "³",
       static_cast<std::size_t>(fields) * dualContouringBytes(settings.fieldRes));
-  add("shadow maps", "render.shadow_map_size=" + std::to_string(settings.shadowMapSize),
+  m.add("shadow maps", "render.shadow_map_size=" + std::to_string(settings.shadowMapSize),
       shadowMapBytes(scene, settings));
   // The frame's translucency method's own (its passes' modules): TranslucencyMethod::addMemory.
   for (const auto& method : makeTranslucencyMethods())
     if (method->id() == settings.sss.method) method->addMemory(scene, settings, BudgetSizes{lightMapSize, mapSize}, m);
-  add("render targets", "render.width × render.height=" + std::to_string(settings.width) + "x" +
+  m.add("render targets", "render.width × render.height=" + std::to_string(settings.width) + "x" +
                             std::to_string(settings.height),
       renderTargetBytes(settings.width, settings.height));
   if (settings.bloom > 0.0f)  // the bright part's mip chain and the picture shown
-    add("bloom", "render.bloom>0", Bloom::bytesFor(settings.width, settings.height));
+    m.add("bloom", "render.bloom>0", Bloom::bytesFor(settings.width, settings.height));
   if (settings.localExposure > 0.0f)  // the bilateral grids and the picture shown
-    add("local exposure", "render.local_exposure>0", LocalExposure::bytesFor(settings.width, settings.height));
+    m.add("local exposure", "render.local_exposure>0", LocalExposure::bytesFor(settings.width, settings.height));
   if (settings.aaSamples > 1)  // sss/still_average.h: the still's three means
-    add("still average", "render.aa=" + std::to_string(settings.aaSamples),
+    m.add("still average", "render.aa=" + std::to_string(settings.aaSamples),
         StillAverage::bytesFor(settings.width, settings.height));
   return m;
 }

@@ -104,8 +104,6 @@ struct FrameContext {
   ModuleStore& modules;
   CameraTarget& target;
   const TranslucencyMethod& method;  ///< the frame's method (the camera pass asks it to shade)
-  /// Every method, the frame's among them, in a fixed order (the camera pass gives each its units).
-  const std::vector<const TranslucencyMethod*>& methods;
   /// Frames the camera pass drew since the accumulation began: seeds the no-cache gather.
   int cameraFrame = 0;
   /// Renderer::invalidate() before this frame: every pass runs as if it never ran (no history kept).

@@ -169,7 +169,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   FrameTimings t;
   t.frame = timer_.beginFrame();
   const FrameState state{scene, settings, timeS, accumulation_};
-  FrameContext context{state, shaders_, geometry_, modules_, target_, plan_.method(state), plan_.methods()};
+  FrameContext context{state, shaders_, geometry_, modules_, target_, plan_.method(state)};
   context.invalidated = forget_;
   context.countMapCoverage = countCoverage && coverageProbe_.begin(settings.sss.maps);
   std::map<std::string, Stamp> before = resources_;

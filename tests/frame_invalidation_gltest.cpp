@@ -206,6 +206,11 @@ std::set<std::string> ranPasses(const sss::FrameTimings& t) {
   return out;
 }
 
+/// Passes that run every frame whatever changed: the camera pass and what follows it.
+bool drawsEveryFrame(const std::string& pass) {
+  return pass == "surface" || pass == "flame" || pass.rfind("camera.", 0) == 0;
+}
+
 /// The passes a frame must run after the inputs changed from `before` to `after` (both converged:
 /// sss.frames = image_space.frames = 1): those that read (or are paced by) a changed input, those
 /// not in the plan before, those that read a resource one of these rewrites, and the camera pass.
@@ -221,8 +226,7 @@ std::set<std::string> expectedReruns(const app::Config& before, const app::Confi
     const sss::PassIo io = p->io(now);
     // The camera pass draws every frame, and the still's average, the glare and the local exposure
     // follow it; everything else here is converged (one frame each).
-    bool runs = !previously.count(p->name()) || p->name() == "surface" || p->name() == "camera.still" ||
-                p->name() == "camera.bloom" || p->name() == "camera.local_exposure";
+    bool runs = !previously.count(p->name()) || drawsEveryFrame(p->name());
     for (const std::string& r : io.reads) runs |= changed.count(r) > 0 || rewritten.count(r) > 0;
     for (const std::string& r : io.paces) runs |= changed.count(r) > 0;
     if (!runs) continue;
@@ -253,10 +257,6 @@ gpu::Image freshFrame(const gpu::ShaderLibrary& shaders, const app::Config& afte
   return renderer.readRadiance();
 }
 
-/// Passes that run every frame whatever changed: the camera pass and what follows it.
-bool drawsEveryFrame(const std::string& pass) {
-  return pass == "surface" || pass == "flame" || pass.rfind("camera.", 0) == 0;
-}
 
 /// For each registry parameter: a second value reruns the passes expectedReruns names; the passes
 /// it skips are observed not to matter and those it reruns to matter (freshFrame with them held);

@@ -771,25 +771,38 @@ double relativeRmse(const gpu::Image& a, const gpu::Image& b, const std::vector<
   return gpu::imageError(a, b, objects).relRmse;
 }
 
+/// The candle played at 4 fps for `frames` frames by two sessions alike but for sss.history (8 and 0):
+/// K = 4, no VPLs, no flame drawn, render.aa=1, plus `sets`; `pause`: the last frame's time.
+struct CandleAtFourFps {
+  static std::vector<std::string> withHistory(std::vector<std::string> sets, int history) {
+    sets.insert(sets.end(), {"render.aa=1", "sss.maps=4", "sss.light_map_size=128", "vpl.count=0",
+                             "render.flame=false", "sss.history=" + std::to_string(history)});
+    return sets;
+  }
+  CandleAtFourFps(const std::vector<std::string>& sets, int frames)
+      : history("candle", withHistory(sets, 8)), restart("candle", withHistory(sets, 0)) {
+    const double start = history.scene().startS;
+    for (int f = 0; f < frames; ++f) {
+      history.render(start + 0.25 * f);
+      restart.render(start + 0.25 * f);
+    }
+    pause = start + 0.25 * (frames - 1);
+  }
+  PresetSession history, restart;
+  double pause = 0.0;
+};
+
 TEST(MapHistory, AStillAfterMotionConvergesToTheHistoryFreeStill) {
   // Issue 38: the candle played at 4 fps, paused at frame 6, and left to accumulate to sss.frames:
   // with sss.history = 8 the kept, lagged frames must leave the estimate, so that the still ends
   // where the history-free still (sss.history = 0, the paper's restart) ends. The noise floor is the
   // history-free still's own change from N = 8 to N = 9 frames.
-  const std::vector<std::string> common = {"render.width=96", "render.height=72", "render.aa=1", "field.res=64",
-                                           "sss.maps=4", "sss.map_size=128", "sss.light_map_size=128",
-                                           "vpl.count=0", "render.flame=false", "sss.frames=16"};
-  std::vector<std::string> kept = common, free = common;
-  kept.push_back("sss.history=8");
-  free.push_back("sss.history=0");
-  PresetSession history("candle", kept), restart("candle", free);
-  const double start = history.scene().startS;
+  CandleAtFourFps played({"render.width=96", "render.height=72", "field.res=64", "sss.map_size=128",
+                          "sss.frames=16"},
+                         6);
+  PresetSession &history = played.history, &restart = played.restart;
   const int frames = history.settings().sss.frames;
-  for (int f = 0; f < 6; ++f) {
-    history.render(start + 0.25 * f);
-    restart.render(start + 0.25 * f);
-  }
-  const double pause = start + 0.25 * 5;
+  const double pause = played.pause;
   gpu::Image still, eight, nine, freeStill;
   while (history.renderer().module<sss::RadiosityMaps>()->frames() < frames) still = history.render(pause);
   while (restart.renderer().module<sss::RadiosityMaps>()->frames() < frames) {
@@ -815,20 +828,10 @@ TEST(MapHistory, AStillAfterMotionFadesTheHistoryAlsoWhenItHoldsSssFramesAlready
   // sss.frames ≤ sss.history: after the motion the maps may hold sss.frames frames or more of kept
   // history, so no frame would be due by the count; the still must start all the same and fade the
   // kept frames out (found by FrameInvalidation at the defaults: sss.frames = 1, history 8).
-  const std::vector<std::string> common = {"render.width=64", "render.height=48", "render.aa=1", "field.res=48",
-                                           "sss.maps=4", "sss.map_size=64", "sss.light_map_size=128",
-                                           "vpl.count=0", "render.flame=false", "sss.frames=4"};
-  std::vector<std::string> kept = common, free = common;
-  kept.push_back("sss.history=8");
-  free.push_back("sss.history=0");
-  PresetSession history("candle", kept), restart("candle", free);
-  const double start = history.scene().startS;
-  for (int f = 0; f < 8; ++f) {
-    history.render(start + 0.25 * f);
-    restart.render(start + 0.25 * f);
-  }
+  CandleAtFourFps played({"render.width=64", "render.height=48", "field.res=48", "sss.map_size=64", "sss.frames=4"}, 8);
+  PresetSession &history = played.history, &restart = played.restart;
   ASSERT_GE(history.renderer().module<sss::RadiosityMaps>()->frames(), 4) << "the motion left sss.frames frames of history";
-  const double pause = start + 0.25 * 7;
+  const double pause = played.pause;
   gpu::Image still, freeStill;
   for (int f = 0; f < 6; ++f) {
     still = history.render(pause);
