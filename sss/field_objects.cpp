@@ -14,7 +14,7 @@ struct FieldObjects::Entry {
   int objectIndex = 0;
   FieldSource source;  ///< the field over time and its bounds (field units, every t)
   std::unique_ptr<geometry::GpuDualContouring> dc;
-  std::unique_ptr<geometry::GpuMeltField> melt;  ///< a melting mesh's grids on the GPU, made at its first lattice
+  std::unique_ptr<GpuFieldFill> fill;  ///< the kind's GPU fill, made at its first lattice on the GPU; null: none
   int res = 0;
   geometry::VertexPlacement placement = geometry::kDefaultPlacement;
   bool onGpu = true;  ///< field.evaluate of the last lattice
@@ -32,39 +32,20 @@ struct FieldObjects::Entry {
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
                                                                 const FieldSource& source, int n,
                                                                 geometry::VertexPlacement placement, bool onGpu) {
-  geometry::NormalSource normals = geometry::NormalSource::LatticeGradient;
-  if (onGpu && source.kind() == FieldKind::Blob) normals = geometry::NormalSource::BlobGradient;
-  if (onGpu && source.kind() == FieldKind::Candle) normals = geometry::NormalSource::CandleGradient;
+  const geometry::NormalSource normals = onGpu ? source.gpuNormals() : geometry::NormalSource::LatticeGradient;
   return std::make_unique<geometry::GpuDualContouring>(shaders, n, placement, normals);
 }
 
-void GpuFieldPrograms::fill(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc) {
-  const geometry::SampledLattice frame = source.gpuLattice(timeS, dc.samplesPerAxis());
-  if (const std::optional<geometry::BlobField> blob = source.blobAt(timeS)) {
-    if (!blob_) blob_ = std::make_unique<geometry::GpuBlobField>(shaders_);
-    blob_->fill(dc, *blob, frame);
-  } else if (const std::optional<geometry::CandleField> candle = source.candleAt(timeS)) {
-    if (!candle_) candle_ = std::make_unique<geometry::GpuCandleField>(shaders_);
-    candle_->fill(dc, *candle, frame);
-  } else {
-    throw std::logic_error("GpuFieldPrograms::fill: not a field evaluated on the GPU");
-  }
-}
-
-void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     GpuFieldPrograms& onGpu, geometry::GpuMeltField* meltOnGpu) {
-  // Analytic fields from their uniforms at t, a melting mesh from its static grids and the melt's
-  // scalars at t: no CPU lattice, no per-frame upload. Still mesh fields on the CPU.
-  if (source.evaluatedOnGpu()) {
-    onGpu.fill(source, timeS, dc);
-  } else if (const std::optional<geometry::MeltAt> melt = source.meltAt(timeS)) {
-    if (!meltOnGpu) throw std::logic_error("putFieldLattice: a melting mesh field needs a GpuMeltField");
-    meltOnGpu->fill(dc, *melt, source.meltLattice(dc.samplesPerAxis()));
-  } else
+void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc, GpuFieldFill* onGpu) {
+  // On the GPU: no CPU lattice, no per-frame upload. Otherwise (a still mesh, field.evaluate=cpu)
+  // sampled on the CPU and uploaded.
+  if (onGpu)
+    onGpu->fill(timeS, dc);
+  else
     dc.upload(source.sample(timeS, dc.samplesPerAxis()));
 }
 
-FieldObjects::FieldObjects(const gpu::ShaderLibrary& shaders, const Scene& scene) : shaders_(shaders), onGpu_(shaders) {
+FieldObjects::FieldObjects(const gpu::ShaderLibrary& shaders, const Scene& scene) : shaders_(shaders) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     if (o.shape != ShapeKind::Field) continue;
@@ -94,13 +75,9 @@ void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement place
     if (!e->stale(timeS, res, placement, onGpu)) continue;
     if (!e->dc || e->res != res || e->placement != placement || e->onGpu != onGpu)
       e->dc = makeFieldExtractor(shaders_, e->source, res, placement, onGpu);
-    if (onGpu) {
-      if (!e->melt && e->source.kind() == FieldKind::Mesh && e->source.animated())
-        e->melt = std::make_unique<geometry::GpuMeltField>(shaders_);  // its grids go up at the first fill
-      putFieldLattice(e->source, timeS, *e->dc, onGpu_, e->melt.get());
-    } else {
-      e->dc->upload(e->source.sample(timeS, res));  // field.evaluate=cpu: the path before the GPU fields
-    }
+    // field.evaluate=cpu: every lattice sampled on the CPU (the path before the GPU fields).
+    if (onGpu && !e->fill) e->fill = e->source.gpuFill(shaders_);  // static data go up at its first fill
+    putFieldLattice(e->source, timeS, *e->dc, onGpu ? e->fill.get() : nullptr);
     e->res = res;
     e->placement = placement;
     e->onGpu = onGpu;
@@ -160,7 +137,7 @@ std::size_t FieldObjects::bytes() const {
   std::size_t n = 0;
   for (const auto& e : entries_) {
     if (e->dc) n += e->dc->bufferBytes();
-    if (e->melt) n += e->melt->bytes();
+    if (e->fill) n += e->fill->bytes();
   }
   return n;
 }
@@ -168,7 +145,7 @@ std::size_t FieldObjects::bytes() const {
 std::size_t FieldObjects::meltGridUploads() const {
   std::size_t n = 0;
   for (const auto& e : entries_)
-    if (e->melt) n += e->melt->gridUploadCount();
+    if (e->fill) n += e->fill->staticUploads();
   return n;
 }
 

@@ -6,17 +6,16 @@
 // shaders/fields/blob.glsl), the candle's shape (geometry::GpuCandleField, shaders/fields/candle.glsl)
 // — and their normals come from their analytic gradients; a melting mesh's from its static NanoVDB
 // grids, uploaded once, and the melt's scalars at t (geometry::GpuMeltField, shaders/fields/melt.glsl);
-// still mesh fields are sampled on the CPU and uploaded. Each object's field, bounds and sampling come
-// from its sss::FieldSource (shared with `tallow mesh` / `field`).
+// still mesh fields are sampled on the CPU and uploaded. Each object's field, bounds, sampling and
+// GPU fill come from its sss::FieldSource (shared with `tallow mesh` / `field`), i.e. from its
+// kind's plug-in (sss/field_kind.h): nothing here names a kind.
 #include <memory>
 #include <vector>
 
-#include "geometry/gpu_blob_field.h"
-#include "geometry/gpu_candle_field.h"
 #include "geometry/gpu_dual_contouring.h"
-#include "geometry/gpu_melt_field.h"
 #include "geometry/scalar_field.h"
 #include "gpu/shader_library.h"
+#include "sss/field_kind.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
 
@@ -24,35 +23,19 @@ namespace tallow::sss {
 
 class FieldSource;
 
-/// An extractor for `source` at n³ samples, as the renderer makes it: the analytic fields' vertex
-/// normals from their gradients (blob, candle) when they are evaluated on the GPU (`onGpu`,
-/// field.evaluate), otherwise and for mesh fields from the lattice.
+/// An extractor for `source` at n³ samples, as the renderer makes it: the vertex normals the
+/// field's kind gives when it is evaluated on the GPU (`onGpu`, field.evaluate; the analytic
+/// gradient of a blob or a candle), otherwise from the lattice.
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
                                                                 const FieldSource& source, int n,
                                                                 geometry::VertexPlacement placement,
                                                                 bool onGpu = true);
 
-/// The compute programs that evaluate the analytic fields on the GPU (FieldSource::evaluatedOnGpu),
-/// each built at its first use: the one place that picks GpuBlobField or GpuCandleField by kind.
-class GpuFieldPrograms {
- public:
-  explicit GpuFieldPrograms(const gpu::ShaderLibrary& shaders) : shaders_(shaders) {}
-  /// Fills `dc`'s lattice with `source`'s field at t (uniforms and one dispatch) and sets its
-  /// analytic normals' uniforms. Throws std::logic_error unless source.evaluatedOnGpu().
-  void fill(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc);
-
- private:
-  const gpu::ShaderLibrary& shaders_;
-  std::unique_ptr<geometry::GpuBlobField> blob_;
-  std::unique_ptr<geometry::GpuCandleField> candle_;
-};
-
-/// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: an analytic field evaluated
-/// on the GPU by `onGpu`, a melting mesh by `meltOnGpu` (its static grids uploaded at its first fill,
-/// then uniforms and one dispatch; needed for a melting mesh), a still mesh field sampled on the CPU
-/// and uploaded.
+/// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: with `onGpu` (its kind's
+/// FieldSource::gpuFill, made by the caller; nullptr with field.evaluate=cpu or for a kind without
+/// one) from uniforms and one dispatch, otherwise sampled on the CPU and uploaded.
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc,
-                     GpuFieldPrograms& onGpu, geometry::GpuMeltField* meltOnGpu = nullptr);
+                     GpuFieldFill* onGpu);
 
 class FieldObjects {
  public:
@@ -90,7 +73,7 @@ class FieldObjects {
   /// GPU to finish the last extraction (a stall): for stats, not for the frame loop.
   std::size_t triangleCount() const;
   std::size_t bytes() const;
-  /// Uploads of melting meshes' static grids so far (one per melting mesh per renderer).
+  /// Uploads of the fields' static GPU data so far (a melting mesh's grids: one per renderer).
   std::size_t meltGridUploads() const;
 
   struct Entry;
@@ -98,7 +81,6 @@ class FieldObjects {
  private:
   const gpu::ShaderLibrary& shaders_;
   std::vector<std::unique_ptr<Entry>> entries_;
-  GpuFieldPrograms onGpu_;
 };
 
 }  // namespace tallow::sss

@@ -3,7 +3,8 @@
 // time-independent parts are built once (a mesh field's level set, the bounds), and at(t) gives the
 // field at time t in field units (before the object's transform, SceneGeometry::modelMatrix).
 // The renderer (FieldObjects) and the `tallow mesh` / `tallow field` commands all go through this
-// class, so they sample and evaluate exactly the same numbers.
+// class, so they sample and evaluate exactly the same numbers; what differs by kind is the kind's
+// plug-in (sss/field_kind.h).
 #include <memory>
 #include <optional>
 
@@ -14,15 +15,13 @@
 #include "geometry/mesh_melt.h"
 #include "geometry/scalar_field.h"
 #include "geometry/triangle_mesh.h"
+#include "sss/field_kind.h"
 #include "sss/scene.h"
 
 namespace tallow::sss {
 
-/// The candle of a FieldKind::Candle description (what FieldSource builds it with).
+/// The candle of a candle field's description (what its kind builds it with).
 geometry::CandleParams candleParams(const FieldDesc& desc);
-
-/// True when a field of this description changes with t (blob, candle, a mesh field that melts).
-bool fieldAnimated(const FieldDesc& desc);
 
 /// A light that follows a candle (Light::follow) at time t: the candle, its flame
 /// (geometry::candleFlameAt with scene.flameFlicker) and what it emits. Throws std::invalid_argument
@@ -51,46 +50,38 @@ Scene sceneAtTime(const Scene& scene, double timeS);
 class FieldSource {
  public:
   /// Builds the time-independent parts of field object `object` (object.shape must be
-  /// ShapeKind::Field). Throws std::runtime_error naming the file when a mesh field's file is
-  /// missing or broken, std::invalid_argument when `object` is not a field object.
+  /// ShapeKind::Field) through its kind (makeFieldKind). Throws std::runtime_error naming the file
+  /// when a mesh field's file is missing or broken, std::invalid_argument when `object` is not a
+  /// field object.
   explicit FieldSource(const SceneObject& object);
   ~FieldSource();
   FieldSource(FieldSource&&) noexcept;
   FieldSource& operator=(FieldSource&&) noexcept;
 
   /// True when the field changes with t (blob, candle, a mesh field with melt_s > 0).
-  bool animated() const;
-  FieldKind kind() const;
+  bool animated() const { return kind_->animated(); }
   /// Field units: contains the surface at every t (what the renderer's bounds are fitted to).
-  geometry::Aabb bounds() const;
+  geometry::Aabb bounds() const { return kind_->bounds(); }
   /// The field at time t (seconds), field units; value < 0 inside (geometry::ScalarField).
-  std::unique_ptr<geometry::ScalarField> at(double timeS) const;
-  /// at(t) sampled on n³ points over the box the renderer isosurfaces for this kind of field.
-  geometry::SampledLattice sample(double timeS, int n) const;
-  /// True for the fields the renderer evaluates on the GPU from uniforms (blob, candle:
-  /// geometry::GpuBlobField, GpuCandleField) instead of sample() + upload; mesh fields are sampled.
-  bool evaluatedOnGpu() const;
-  /// A blob field (FieldKind::Blob) at time t; std::nullopt for the other kinds.
-  std::optional<geometry::BlobField> blobAt(double timeS) const;
-  /// A candle field (FieldKind::Candle) at time t; std::nullopt for the other kinds.
-  std::optional<geometry::CandleField> candleAt(double timeS) const;
-  /// The lattice sample(t, n) fills, without values: where the GPU evaluates a field for which
-  /// evaluatedOnGpu() (a blob, a candle: the box of every t, so the lattice holds still). Throws
-  /// std::logic_error for the other kinds.
-  geometry::SampledLattice gpuLattice(double timeS, int n) const;
+  std::unique_ptr<geometry::ScalarField> at(double timeS) const { return kind_->at(timeS); }
+  /// at(t) sampled on n³ points over bounds(): the lattice the renderer isosurfaces.
+  geometry::SampledLattice sample(double timeS, int n) const { return kind_->sample(timeS, n); }
+  /// The lattice a GPU fill (gpuFill) writes at n³ points, without values: the box of every t, so
+  /// that it holds still while the field moves; what sample() fills for the kinds that have a fill.
+  geometry::SampledLattice gpuLattice(int n) const { return geometry::latticeOver(bounds(), n); }
+  /// The extractor's vertex normals when the field is evaluated on the GPU.
+  geometry::NormalSource gpuNormals() const { return kind_->gpuNormals(); }
+  /// What evaluates this field on the GPU from uniforms at t (blob, candle, a melting mesh), or
+  /// nullptr for a field sampled on the CPU and uploaded (a still mesh). Lives no longer than this.
+  std::unique_ptr<GpuFieldFill> gpuFill(const gpu::ShaderLibrary& shaders) const { return kind_->gpuFill(shaders); }
 
-  /// A melting mesh field's melt at time t (its static NanoVDB grids, built once, and the scalars
-  /// at t), which the renderer evaluates on the GPU (geometry::GpuMeltField) instead of sample();
-  /// std::nullopt for the other kinds and for a mesh that does not melt.
-  std::optional<geometry::MeltAt> meltAt(double timeS) const;
-  /// The lattice sample(t, n) fills for a melting mesh (the box of every t), without values: where
-  /// the GPU evaluates meltAt(t). Throws std::logic_error for the other kinds.
-  geometry::SampledLattice meltLattice(int n) const;
-
-  struct Parts;  ///< per kind, in field_source.cpp
+  /// The kind's own model at t where it is that kind; std::nullopt otherwise.
+  std::optional<geometry::BlobField> blobAt(double timeS) const { return kind_->blobAt(timeS); }
+  std::optional<geometry::CandleField> candleAt(double timeS) const { return kind_->candleAt(timeS); }
+  std::optional<geometry::MeltAt> meltAt(double timeS) const { return kind_->meltAt(timeS); }
 
  private:
-  std::unique_ptr<Parts> parts_;
+  std::unique_ptr<FieldKindModel> kind_;
 };
 
 }  // namespace tallow::sss

@@ -17,7 +17,7 @@ constexpr int kFlameRows = 12;
 const SceneObject* followedCandle(const Scene& scene, const Light& light) {
   if (light.kind != LightKind::Point || light.follow < 0) return nullptr;
   const SceneObject& o = scene.objects.at(static_cast<std::size_t>(light.follow));
-  return o.shape == ShapeKind::Field && o.field.kind == FieldKind::Candle ? &o : nullptr;
+  return o.shape == ShapeKind::Field && fieldCarriesFlame(o.field) ? &o : nullptr;
 }
 
 }  // namespace

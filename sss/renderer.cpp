@@ -8,7 +8,6 @@
 #include "gpu/readback.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
-#include "sss/maps/radiosity_maps.h"
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
 #include "sss/memory_budget.h"
@@ -117,8 +116,9 @@ bool Renderer::choosesMapCount(const Scene& scene, const RenderSettings& setting
   return plan_.method(state).choosesMapCount(state);
 }
 
-int Renderer::chosenMapCount(const Scene& scene, const RenderSettings& settings) const {
-  return choosesMapCount(scene, settings) ? mapCountChooser_.k() : mapCount(scene, settings);
+std::optional<int> Renderer::chosenMapCount(const Scene& scene, const RenderSettings& settings) const {
+  if (!choosesMapCount(scene, settings)) return std::nullopt;
+  return mapCountChooser_.k();
 }
 
 RenderSettings Renderer::withChosenMaps(const Scene& scene, const RenderSettings& settings) const {

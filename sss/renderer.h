@@ -120,9 +120,10 @@ class Renderer {
   /// buffers, which are grown (FieldObjects::growOverflowed); the frame, cut, must be rendered
   /// again. render() itself checks the last frame's without waiting and then redraws everything.
   bool repairGeometry();
-  /// sss.maps=auto: the K the next frame uses (sss/maps/map_count.h), from the coverage read back so
-  /// far; the setting itself otherwise.
-  int chosenMapCount(const Scene& scene, const RenderSettings& settings) const;
+  /// sss.maps=auto with a method that chooses K (TranslucencyMethod::choosesMapCount): the K the next
+  /// frame uses (sss/maps/map_count.h), from the coverage read back so far; std::nullopt where
+  /// nothing is chosen (a fixed K, listed map directions, a method without maps).
+  std::optional<int> chosenMapCount(const Scene& scene, const RenderSettings& settings) const;
   /// The newest coverage counts read back for sss.maps=auto (none before the first arrives).
   const std::optional<MapCoverageCounts>& lastMapCoverage() const { return lastMapCoverage_; }
   /// Forgets what the progressive methods have accumulated, keeping every allocation: the next

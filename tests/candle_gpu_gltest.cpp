@@ -215,7 +215,7 @@ TEST_P(CandleGpuRendererPlacement, CandleFramesAreFilledOnTheGpuAndMatchTheCpuSa
     const test::FieldComparison c =
         test::compareWithCpuSampledPath(rendered, source, t, kRes, shaders, s.settings().fieldPlacement);
     const SampledLattice& cpuLattice = c.cpuLattice;
-    const SampledLattice gpuFrame = source.gpuLattice(t, kRes);
+    const SampledLattice gpuFrame = source.gpuLattice(kRes);
     EXPECT_EQ(gpuFrame.origin, cpuLattice.origin);
     EXPECT_EQ(gpuFrame.cellSize, cpuLattice.cellSize);
 

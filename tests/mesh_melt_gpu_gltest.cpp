@@ -111,7 +111,7 @@ TEST_F(MeshMeltGpuTest, LatticeFilledOnTheGpuIsTheCpuFieldAtTheSamePoints) {
   constexpr int kSamples = 48;
   GpuMeltField gpuMelt(library_);
   GpuDualContouring dc(library_, kSamples);
-  const SampledLattice frame = source_->meltLattice(kSamples);
+  const SampledLattice frame = source_->gpuLattice(kSamples);
   for (double t : kTimes) {
     const MeltAt at = *source_->meltAt(t);
     const std::unique_ptr<geometry::ScalarField> cpu = source_->at(t);

@@ -12,7 +12,6 @@
 #include "geometry/candle_field.h"
 #include "geometry/cpu_mesher.h"
 #include "geometry/gpu_dual_contouring.h"
-#include "geometry/gpu_melt_field.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
 #include "sss/field_objects.h"
@@ -39,8 +38,6 @@ namespace {
 sss::FieldMeshes meshEachField(const std::vector<PlacedField>& fields, const sss::RenderSettings& render,
                                double timeS, const gpu::ShaderLibrary* shaders) {
   sss::FieldMeshes meshes;
-  std::unique_ptr<sss::GpuFieldPrograms> onGpu;
-  if (shaders) onGpu = std::make_unique<sss::GpuFieldPrograms>(*shaders);
   for (const PlacedField& f : fields) {
     geometry::TriangleMesh part;
     if (!shaders) {
@@ -51,14 +48,8 @@ sss::FieldMeshes meshEachField(const std::vector<PlacedField>& fields, const sss
       // every lattice sampled on the CPU and uploaded.
       const auto dc = sss::makeFieldExtractor(*shaders, f.source, render.fieldRes, render.fieldPlacement,
                                               render.fieldOnGpu);
-      if (render.fieldOnGpu) {
-        std::unique_ptr<geometry::GpuMeltField> meltOnGpu;
-        if (f.source.kind() == sss::FieldKind::Mesh && f.source.animated())
-          meltOnGpu = std::make_unique<geometry::GpuMeltField>(*shaders);
-        sss::putFieldLattice(f.source, timeS, *dc, *onGpu, meltOnGpu.get());
-      } else {
-        dc->upload(f.source.sample(timeS, render.fieldRes));
-      }
+      const std::unique_ptr<sss::GpuFieldFill> onGpu = render.fieldOnGpu ? f.source.gpuFill(*shaders) : nullptr;
+      sss::putFieldLattice(f.source, timeS, *dc, onGpu.get());
       dc->extract();
       part = dc->readBack();
     }
@@ -121,8 +112,10 @@ namespace {
 std::vector<std::string> modelComments(const MeshOptions& options, const LoadedScene& loaded) {
   std::vector<std::string> comments;
   for (const sss::SceneObject& o : loaded.config.scene.objects) {
-    if (o.shape != sss::ShapeKind::Field || o.field.kind != sss::FieldKind::Candle) continue;
-    const geometry::CandleField c(options.timeS, sss::candleParams(o.field));
+    if (o.shape != sss::ShapeKind::Field) continue;
+    const std::optional<geometry::CandleField> candle = sss::candleOf(o.field, options.timeS);
+    if (!candle) continue;
+    const geometry::CandleField& c = *candle;
     char line[512];
     std::snprintf(line, sizeof line,
                   "tallow.candle %s t %.9g rim_height %.9g pool_y %.9g pool_radius %.9g pool_depth %.9g "

@@ -51,7 +51,7 @@ std::string ViewSession::loadPreset(const std::string& nameOrPath) {
 std::optional<std::int64_t> ViewSession::autoChoice(std::string_view key) const {
   const sss::RadiosityMaps* maps = renderer_->module<sss::RadiosityMaps>();
   int chosen = 0;
-  if (key == "sss.maps") chosen = renderer_->chosenMapCount(loaded_.config.scene, loaded_.config.render);
+  if (key == "sss.maps") chosen = renderer_->chosenMapCount(loaded_.config.scene, loaded_.config.render).value_or(0);
   else if (key == "sss.map_size" && maps) chosen = maps->mapSize();
   else if (key == "sss.light_map_size" && maps) chosen = maps->lightMapSize();
   if (chosen <= 0) return std::nullopt;
