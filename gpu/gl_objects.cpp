@@ -1,10 +1,46 @@
 #include "gpu/gl_objects.h"
 
+#include <atomic>
 #include <stdexcept>
 
 #include "gpu/byte_size.h"
 
 namespace tallow::gpu {
+
+namespace {
+constexpr int kKinds = static_cast<int>(GlObjectKind::Count);
+// Relaxed atomics: a count, read by tests between frames; GL objects are made on one thread, but a
+// worker may release one.
+std::atomic<std::size_t> gCreated[kKinds];
+std::atomic<std::size_t> gDeleted[kKinds];
+constexpr const char* kKindNames[kKinds] = {"buffer", "texture", "framebuffer", "vertex array", "query",
+                                            "transform feedback"};
+}  // namespace
+
+void detail::countGlObject(GlObjectKind kind, bool created) {
+  (created ? gCreated : gDeleted)[static_cast<int>(kind)].fetch_add(1, std::memory_order_relaxed);
+}
+
+GlObjectTally glObjectTally() {
+  GlObjectTally t;
+  for (int k = 0; k < kKinds; ++k) {
+    t.created[k] = gCreated[k].load(std::memory_order_relaxed);
+    t.deleted[k] = gDeleted[k].load(std::memory_order_relaxed);
+  }
+  return t;
+}
+
+std::string GlObjectTally::since(const GlObjectTally& before) const {
+  std::string out;
+  for (int k = 0; k < kKinds; ++k) {
+    const std::size_t made = created[k] - before.created[k], gone = deleted[k] - before.deleted[k];
+    if (made == 0 && gone == 0) continue;
+    if (!out.empty()) out += ", ";
+    out += std::string(kKindNames[k]) + " +" + std::to_string(made) + " -" + std::to_string(gone);
+  }
+  return out;
+}
+
 namespace {
 
 /// GL keeps one pending flag per kind of error, so a few reads clear them all; the cap keeps a
@@ -82,6 +118,14 @@ void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
   glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
 }
 
+void Buffer::assign(std::size_t bytes, const void* data) {
+  if (id() && size_ == bytes) {
+    if (bytes > 0) upload(0, bytes, data);
+    return;
+  }
+  *this = Buffer(bytes, data);
+}
+
 void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
   glGetNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), out);
 }
@@ -91,6 +135,8 @@ Texture Texture::make(GLenum target, GLenum format, int w, int h, int d, int lev
   GLuint id = 0;
   glCreateTextures(target, 1, &id);
   t.name_ = detail::GlName<detail::TextureTraits>(id);
+  static std::atomic<std::uint64_t> serials{0};
+  t.serial_ = ++serials;
   t.target_ = target;
   t.format_ = format;
   t.width_ = w;
@@ -238,20 +284,51 @@ void Framebuffer::checkComplete(const std::string& what) const {
   throw std::runtime_error(what + ": framebuffer incomplete (" + text + ")");
 }
 
-Framebuffer boundGBuffer(const Texture& position, const Texture& normal, const Texture& depth, float clearDepth,
-                         const std::string& what) {
-  Framebuffer fb;
-  fb.attachColor(0, position);
-  fb.attachColor(1, normal);
-  fb.attachDepth(depth);
-  fb.setDrawBuffers(2);
-  fb.checkComplete(what);
+const Framebuffer& TargetFramebuffer::attach(std::initializer_list<Attachment> colours, Attachment depth,
+                                             const std::string& what) {
+  if (!fb_) fb_ = std::make_unique<Framebuffer>();
+  const auto bound = [](const Attachment& a) {
+    return a.texture ? Bound{a.texture->id(), a.texture->serial(), a.level, a.layer} : Bound{};
+  };
+  bool changed = colours.size() != colours_.size() || !(bound(depth) == depth_);
+  for (std::size_t i = 0; !changed && i < colours.size(); ++i) changed = !(bound(colours.begin()[i]) == colours_[i]);
+  if (!changed) return *fb_;
+  // Detach colours no longer drawn, then point every attachment at its texture.
+  for (std::size_t i = colours.size(); i < colours_.size(); ++i)
+    glNamedFramebufferTexture(fb_->id(), GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), 0, 0);
+  colours_.clear();
+  int index = 0;
+  for (const Attachment& a : colours) {
+    if (a.texture) fb_->attachColor(index, *a.texture, a.level, a.layer);
+    else glNamedFramebufferTexture(fb_->id(), GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(index), 0, 0);
+    colours_.push_back(bound(a));
+    ++index;
+  }
+  if (depth.texture) fb_->attachDepth(*depth.texture, depth.level, depth.layer);
+  else glNamedFramebufferTexture(fb_->id(), GL_DEPTH_ATTACHMENT, 0, 0);
+  depth_ = bound(depth);
+  fb_->setDrawBuffers(static_cast<int>(colours.size()));
+  fb_->checkComplete(what);
+  return *fb_;
+}
+
+void TargetFramebuffer::release() {
+  if (!fb_) return;
+  for (std::size_t i = 0; i < colours_.size(); ++i)
+    glNamedFramebufferTexture(fb_->id(), GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), 0, 0);
+  glNamedFramebufferTexture(fb_->id(), GL_DEPTH_ATTACHMENT, 0, 0);
+  colours_.clear();
+  depth_ = Bound{};
+}
+
+void bindGBuffer(TargetFramebuffer& target, const Texture& position, const Texture& normal, const Texture& depth,
+                 float clearDepth, const std::string& what) {
+  const Framebuffer& fb = target.attach({{&position}, {&normal}}, {&depth}, what);
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(fb.id(), GL_COLOR, 0, zero);
   glClearNamedFramebufferfv(fb.id(), GL_COLOR, 1, zero);
   glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &clearDepth);
   fb.bind();
-  return fb;
 }
 
 VertexArray::VertexArray() {

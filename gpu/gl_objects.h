@@ -6,9 +6,13 @@
 #include <glad/gl.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace tallow::gpu {
 
@@ -20,13 +24,34 @@ class GpuOutOfMemory : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The kinds of GL object the owners below hold, for GlObjectTally.
+enum class GlObjectKind { Buffer, Texture, Framebuffer, VertexArray, Query, TransformFeedback, Count };
+
+/// How many GL objects of each kind the owners below have created and deleted in this process:
+/// what a test of "nothing created per frame" (issue 39) compares before and after a frame.
+struct GlObjectTally {
+  std::size_t created[static_cast<int>(GlObjectKind::Count)] = {};
+  std::size_t deleted[static_cast<int>(GlObjectKind::Count)] = {};
+  std::size_t createdOf(GlObjectKind k) const { return created[static_cast<int>(k)]; }
+  std::size_t deletedOf(GlObjectKind k) const { return deleted[static_cast<int>(k)]; }
+  /// Creations and deletions of every kind since `before`, as "framebuffer +2 -2, buffer +1 -1"
+  /// (empty when none).
+  std::string since(const GlObjectTally& before) const;
+};
+/// The tally so far.
+GlObjectTally glObjectTally();
+
 namespace detail {
+void countGlObject(GlObjectKind kind, bool created);
+
 /// Owns one GL name; Traits::destroy(GLuint) deletes it.
 template <class Traits>
 class GlName {
  public:
   GlName() = default;
-  explicit GlName(GLuint id) : id_(id) {}
+  explicit GlName(GLuint id) : id_(id) {
+    if (id_) countGlObject(Traits::kKind, true);
+  }
   GlName(const GlName&) = delete;
   GlName& operator=(const GlName&) = delete;
   GlName(GlName&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
@@ -39,7 +64,10 @@ class GlName {
   }
   ~GlName() { reset(); }
   void reset() {
-    if (id_) Traits::destroy(id_);
+    if (id_) {
+      Traits::destroy(id_);
+      countGlObject(Traits::kKind, false);
+    }
     id_ = 0;
   }
   GLuint id() const { return id_; }
@@ -49,12 +77,30 @@ class GlName {
   GLuint id_ = 0;
 };
 
-struct BufferTraits { static void destroy(GLuint id) { glDeleteBuffers(1, &id); } };
-struct TextureTraits { static void destroy(GLuint id) { glDeleteTextures(1, &id); } };
-struct FramebufferTraits { static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); } };
-struct VertexArrayTraits { static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); } };
-struct QueryTraits { static void destroy(GLuint id) { glDeleteQueries(1, &id); } };
-struct TransformFeedbackTraits { static void destroy(GLuint id) { glDeleteTransformFeedbacks(1, &id); } };
+struct BufferTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::Buffer;
+  static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
+};
+struct TextureTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::Texture;
+  static void destroy(GLuint id) { glDeleteTextures(1, &id); }
+};
+struct FramebufferTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::Framebuffer;
+  static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
+};
+struct VertexArrayTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::VertexArray;
+  static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
+};
+struct QueryTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::Query;
+  static void destroy(GLuint id) { glDeleteQueries(1, &id); }
+};
+struct TransformFeedbackTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::TransformFeedback;
+  static void destroy(GLuint id) { glDeleteTransformFeedbacks(1, &id); }
+};
 }  // namespace detail
 
 class Buffer {
@@ -67,6 +113,9 @@ class Buffer {
   std::size_t size() const { return size_; }
   void upload(std::size_t offset, std::size_t bytes, const void* data);
   void download(std::size_t offset, std::size_t bytes, void* out) const;
+  /// Holds `bytes` from `data` afterwards: uploaded in place when it has that size already (the
+  /// per-frame path: no object created, issue 39), otherwise made anew with the default flags.
+  void assign(std::size_t bytes, const void* data);
 
  private:
   detail::GlName<detail::BufferTraits> name_;
@@ -86,6 +135,9 @@ class Texture {
   static Texture createCubeArray(GLenum format, int size, int cubes, int levels = 1);
 
   GLuint id() const { return name_.id(); }
+  /// Unique among the textures this process made (never reused, unlike GL's names): what tells a
+  /// TargetFramebuffer that an attachment is another texture under a recycled name.
+  std::uint64_t serial() const { return serial_; }
   GLenum target() const { return target_; }
   GLenum format() const { return format_; }
   int width() const { return width_; }
@@ -107,6 +159,7 @@ class Texture {
  private:
   static Texture make(GLenum target, GLenum format, int w, int h, int d, int levels);
   detail::GlName<detail::TextureTraits> name_;
+  std::uint64_t serial_ = 0;
   GLenum target_ = 0, format_ = 0;
   int width_ = 0, height_ = 0, depth_ = 1, levels_ = 1;
 };
@@ -128,11 +181,44 @@ class Framebuffer {
   detail::GlName<detail::FramebufferTraits> name_;
 };
 
+/// A pass's render target, made once and pointed at the textures the pass draws into: the same
+/// attachments again cost nothing, other ones (a swap, a reallocation) are re-attached and checked
+/// once — no GL object is created or deleted per frame (issue 39). An attached texture stays alive
+/// in the driver after its owner drops it, so an owner that frees its textures for good calls
+/// release().
+class TargetFramebuffer {
+ public:
+  struct Attachment {
+    const Texture* texture = nullptr;  ///< null: nothing at this attachment point
+    int level = 0;
+    int layer = -1;  ///< < 0: all layers (layered rendering)
+  };
+  /// Colour attachments 0..colours.size() − 1 (drawn into, in that order) and `depth`; checked
+  /// complete when anything changed (`what` names the target in the error). Returns the target.
+  const Framebuffer& attach(std::initializer_list<Attachment> colours, Attachment depth, const std::string& what);
+  /// Detaches everything (the framebuffer itself stays).
+  void release();
+
+ private:
+  struct Bound {
+    GLuint id = 0;
+    std::uint64_t serial = 0;
+    int level = 0, layer = -1;
+    bool operator==(const Bound& o) const {
+      return id == o.id && serial == o.serial && level == o.level && layer == o.layer;
+    }
+  };
+  std::unique_ptr<Framebuffer> fb_;  ///< made at the first attach (a GL context is current then)
+  std::vector<Bound> colours_;
+  Bound depth_;
+};
+
 /// A G-buffer's target (the light, map and VPL-cube G-buffers): `position` and `normal` as colour
-/// attachments 0 and 1 and `depth`, all layers; checked complete (`what` names it in the error), both
-/// colours cleared to 0 and the depth to `clearDepth`, and bound for drawing.
-Framebuffer boundGBuffer(const Texture& position, const Texture& normal, const Texture& depth, float clearDepth,
-                         const std::string& what);
+/// attachments 0 and 1 and `depth`, all layers, in `target`; checked complete when they changed
+/// (`what` names it in the error), both colours cleared to 0 and the depth to `clearDepth`, and bound
+/// for drawing.
+void bindGBuffer(TargetFramebuffer& target, const Texture& position, const Texture& normal, const Texture& depth,
+                 float clearDepth, const std::string& what);
 
 class VertexArray {
  public:

@@ -85,9 +85,12 @@ void ShadowPass::resetPoint(std::size_t lightCount) {
   layers_.pointRange.assign(lightCount, 1.0f);
 }
 
-void ShadowPass::ensure(gpu::Texture& texture, bool cube, int size, int layers) {
+void ShadowPass::ensure(gpu::Texture& texture, std::vector<gpu::TargetFramebuffer>& targets, bool cube, int size,
+                        int layers) {
   const int depth = cube ? 6 * layers : layers;
   if (texture.id() && texture.width() == size && texture.depth() == depth) return;
+  for (gpu::TargetFramebuffer& t : targets) t.release();  // none keeps the old map alive
+  targets.resize(static_cast<std::size_t>(depth));
   texture = makeDepthTexture(cube, size, layers);
 }
 
@@ -100,7 +103,7 @@ void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& set
     if (scene.lights[i].castsShadows && scene.lights[i].kind == LightKind::Directional)
       layers_.directionalLayer[i] = count++;
   const int size = settings.shadowMapSize;
-  ensure(directional_, false, size, count);
+  ensure(directional_, directionalTargets_, false, size, count);
 
   DepthOnlyState state;
   program_.use();
@@ -111,11 +114,7 @@ void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& set
   for (std::size_t i = 0; i < n; ++i) {
     const int layer = layers_.directionalLayer[i];
     if (layer < 0) continue;
-    gpu::Framebuffer fb;
-    fb.attachDepth(directional_, 0, layer);
-    fb.setDrawBuffers(0);
-    fb.checkComplete("directional shadow map");
-    fb.bind();
+    directionalTargets_[static_cast<std::size_t>(layer)].attach({}, {&directional_, 0, layer}, "directional shadow map").bind();
     glClear(GL_DEPTH_BUFFER_BIT);
     float texel = 0.0f;
     const glm::mat4 vp = directionalShadowViewProjection(scene.lights[i].direction, geometry.casterBounds(),
@@ -136,7 +135,7 @@ void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings,
   // Cube faces are smaller than a directional map: each covers only a quarter of the view sphere
   // around the light, so half the size gives a similar texel density for nearby receivers.
   const int size = std::max(16, settings.shadowMapSize / 2);
-  ensure(point_, true, size, count);
+  ensure(point_, pointTargets_, true, size, count);
   layers_.pointTexelAngle = glm::radians(90.0f) / static_cast<float>(size);
 
   DepthOnlyState state;
@@ -160,11 +159,8 @@ void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings,
     program_.set("uRange", range);
     const auto faces = cubeFaceViewProjections(p, range * kPointNearFraction, range);
     for (int f = 0; f < 6; ++f) {
-      gpu::Framebuffer fb;
-      fb.attachDepth(point_, 0, 6 * cube + f);
-      fb.setDrawBuffers(0);
-      fb.checkComplete("point shadow map");
-      fb.bind();
+      const int face = 6 * cube + f;
+      pointTargets_[static_cast<std::size_t>(face)].attach({}, {&point_, 0, face}, "point shadow map").bind();
       glClear(GL_DEPTH_BUFFER_BIT);
       drawDepth(program_, geometry, faces[static_cast<std::size_t>(f)]);
     }

@@ -48,11 +48,14 @@ class ShadowPass {
   std::size_t bytes() const { return directional_.bytes() + point_.bytes(); }
 
  private:
-  void ensure(gpu::Texture& texture, bool cube, int size, int layers);
+  /// Makes `texture` a depth map of `size` and `layers` (cube: 6 faces each) unless it is one
+  /// already, and keeps one target per layer (face) in `targets`, released when it was remade.
+  void ensure(gpu::Texture& texture, std::vector<gpu::TargetFramebuffer>& targets, bool cube, int size, int layers);
   void resetDirectional(std::size_t lightCount);
   void resetPoint(std::size_t lightCount);
   gpu::Program program_;
   gpu::Texture directional_, point_;
+  std::vector<gpu::TargetFramebuffer> directionalTargets_, pointTargets_;  ///< per layer / per cube face
   gpu::Texture dummyDirectional_, dummyPoint_;
   ShadowLayers layers_;
 };

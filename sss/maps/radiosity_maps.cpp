@@ -298,9 +298,9 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   gbufferProgram_.use();
   setSlotUniforms(gbufferProgram_, slotTable_, false);
   glViewport(0, 0, size, size);
-  const auto drawAll = [&](const std::vector<glm::mat4>& layers) {
-    gbufferViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, gbufferViews_.id());
+  const auto drawAll = [&](const std::vector<glm::mat4>& layers, gpu::Buffer& views) {
+    views.assign(layers.size() * sizeof(glm::mat4), layers.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLayerViewsBinding, views.id());
     gbufferProgram_.set("uLayerBase", 0);
     for (const DrawItem& item : geometry.items()) {
       gbufferProgram_.set("uModel", item.model);
@@ -309,14 +309,16 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
       item.draw(static_cast<int>(layers.size()));
     }
   };
-  const auto renderKind = [&](const gpu::Texture& position, const gpu::Texture& normal, const gpu::Texture& depth,
-                              const std::vector<glm::mat4>& layers, const char* what) {
+  const auto renderKind = [&](gpu::TargetFramebuffer& target, const gpu::Texture& position, const gpu::Texture& normal,
+                              const gpu::Texture& depth, const std::vector<glm::mat4>& layers, gpu::Buffer& views,
+                              const char* what) {
     if (layers.empty()) return;
-    const gpu::Framebuffer fb = gpu::boundGBuffer(position, normal, depth, 1.0f, what);  // position tag 0: nothing
-    drawAll(layers);
+    gpu::bindGBuffer(target, position, normal, depth, 1.0f, what);  // position tag 0: nothing
+    drawAll(layers, views);
   };
-  renderKind(dirPosition_, dirNormal_, dirDepth_, dirLayers, "directional light G-buffer");
-  renderKind(pointPosition_, pointNormal_, pointDepth_, pointLayers, "point light G-buffer");
+  renderKind(dirTarget_, dirPosition_, dirNormal_, dirDepth_, dirLayers, dirLayerViews_, "directional light G-buffer");
+  renderKind(pointTarget_, pointPosition_, pointNormal_, pointDepth_, pointLayers, pointLayerViews_,
+             "point light G-buffer");
 }
 
 void RadiosityMaps::setLightUniforms(gpu::Program& p, const Scene& scene, GLuint firstUnit) const {
@@ -494,8 +496,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
       historyMean_ = gpu::Texture();
       historyFresh_ = gpu::Texture();
     }
-    const gpu::Framebuffer fb =
-        gpu::boundGBuffer(mapPosition_, mapNormal_, mapDepth_, 1.0f, "scattered radiosity maps' G-buffer");
+    gpu::bindGBuffer(mapGBufferTarget_, mapPosition_, mapNormal_, mapDepth_, 1.0f, "scattered radiosity maps' G-buffer");
     mapGBufferProgram_.use();
     setSlotUniforms(mapGBufferProgram_, slotTable_, false);
     drawTranslucent(mapGBufferProgram_);
@@ -549,8 +550,8 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
       layers.push_back(v.viewProjection);
       camera.push_back({v.toTexture, glm::vec4(v.direction, 0.0f), depthPerMetre});
     }
-    mapLayerViews_ = gpu::Buffer(layers.size() * sizeof(glm::mat4), layers.data());
-    cameraViews_ = gpu::Buffer(camera.size() * sizeof(CameraView), camera.data());
+    mapLayerViews_.assign(layers.size() * sizeof(glm::mat4), layers.data());
+    cameraViews_.assign(camera.size() * sizeof(CameraView), camera.data());
     glClearTexImage(maps_.id(), 0, GL_RGBA, GL_FLOAT, zero);
     if (resize)
       glCopyImageSubData(keptMaps.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, maps_.id(), GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0,
@@ -560,10 +561,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
       drawMapGBuffer();
     } else {
       // Depth pre-pass of the translucent objects into all K layers.
-      gpu::Framebuffer fb;
-      fb.attachDepth(mapDepth_);
-      fb.setDrawBuffers(0);
-      fb.checkComplete("scattered radiosity maps' depth");
+      const gpu::Framebuffer& fb = mapDepthTarget_.attach({}, {&mapDepth_}, "scattered radiosity maps' depth");
       glClearNamedFramebufferfv(fb.id(), GL_DEPTH, 0, &one);
       fb.bind();
       depthProgram_.use();
@@ -593,12 +591,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   } else {
     // Shading: the estimator once per visible texel, added to the frames before (Algorithm 1
     // divides by F).
-    gpu::Framebuffer fb;
-    fb.attachColor(0, maps_);
-    fb.attachDepth(mapDepth_);
-    fb.setDrawBuffers(1);
-    fb.checkComplete("scattered radiosity maps");
-    fb.bind();
+    mapShadeTarget_.attach({{&maps_}}, {&mapDepth_}, "scattered radiosity maps").bind();
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);

@@ -199,7 +199,10 @@ class RadiosityMaps {
   /// On a history reuse: the kept history (mean, frames), and with sss.history_rescale this frame's
   /// mean where a history was kept; both mipmapped for the coarse ratio (maps/history_merge.comp).
   gpu::Texture historyMean_, historyFresh_;
-  gpu::Buffer gbufferViews_;   ///< std430 mat4 per light G-buffer layer being drawn
+  gpu::Buffer dirLayerViews_, pointLayerViews_;  ///< std430 mat4 per light G-buffer layer (layered.geom)
+  // The passes' targets, made once (gpu::TargetFramebuffer): light G-buffers, the maps' G-buffer, the
+  // depth pre-pass and the fragment gather's.
+  gpu::TargetFramebuffer dirTarget_, pointTarget_, mapGBufferTarget_, mapDepthTarget_, mapShadeTarget_;
   gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered.geom)
   gpu::Buffer cameraViews_;    ///< the maps as Algorithm 1 reads them (cameraViews())
   std::vector<MapView> views_;

@@ -224,11 +224,11 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   }
   const float range = 0.5f * glm::length(size) * 1.01f + 1e-6f;
   const auto faces = cubeFaceViewProjections(centre_, range * 1e-4f, range);
-  faceViews_ = gpu::Buffer(sizeof(faces), faces.data());
+  faceViews_.assign(sizeof(faces), faces.data());
   {
     CubePassState state;
     // Depth cleared to the near plane: any surface is farther.
-    const gpu::Framebuffer fb = gpu::boundGBuffer(cubePosition_, cubeNormal_, cubeDepth_, 0.0f, "VPL outermost-surface cube");
+    gpu::bindGBuffer(cubeTarget_, cubePosition_, cubeNormal_, cubeDepth_, 0.0f, "VPL outermost-surface cube");
     glViewport(0, 0, cube, cube);
     cubeProgram_.use();
     setSlotUniforms(cubeProgram_, maps.slotTable(), false);

@@ -98,6 +98,7 @@ class VirtualPointLights {
   gpu::Program cubeProgram_, compute_;
   gpu::Texture cubePosition_, cubeNormal_, cubeDepth_;
   gpu::Buffer records_, parts_, directions_, faceViews_;
+  gpu::TargetFramebuffer cubeTarget_;  ///< the outermost-surface cube's G-buffer
   ShadowPass shadows_;                       ///< the clusters' cube shadow maps, as point lights
   std::vector<glm::vec3> clusterCentre_;     ///< per cluster: its shadow camera
   std::vector<float> clusterRange_;          ///< per cluster: distance stored as depth 1 (0: no cluster)
