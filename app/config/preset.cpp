@@ -15,7 +15,6 @@
 #include "app/config/registry.h"
 #include "geometry/candle_field.h"
 #include "gpu/utf8.h"
-#include "sss/field_kind.h"
 
 namespace tallow::app {
 
@@ -346,7 +345,7 @@ class PresetReader {
       const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
                                    [&](const sss::SceneObject& o) { return o.name == name; });
       if (it == scene.objects.end()) doc_.fail(p / "follow", "follow: no object is named \"" + name + "\"");
-      if (it->shape != sss::ShapeKind::Field || !sss::fieldCarriesFlame(it->field))
+      if (it->shape != sss::ShapeKind::Field || it->field.kind != sss::FieldKind::Candle)
         doc_.fail(p / "follow", "follow: \"" + name + "\" is not a candle field; only a candle has a flame to follow");
       scene.lights[i].follow = static_cast<int>(it - scene.objects.begin());
     }
