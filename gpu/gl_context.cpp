@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gpu/gl_context_backends.h"
+#include "gpu/gl_limits.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #include <dlfcn.h>
@@ -83,6 +84,7 @@ void GlContext::loadGl(void* (*getProcAddress)(const char*), std::string_view ba
     throw ContextError("OpenGL 4.5 core is required, but " + std::string(backendName) + " offers " +
                        info_.version + " (" + info_.renderer + ")");
   }
+  readGlLimits();
   if (debugOutput) {
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "gpu/readback.h"
+#include "gpu/gl_limits.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/shadow_pass.h"
@@ -34,10 +35,9 @@ void checkLimits(const Scene& scene, const RenderSettings& settings) {
   if (pointCount > kMaxPointLights)
     throw std::invalid_argument("the scene has " + std::to_string(pointCount) + " point lights; at most " +
                                 std::to_string(kMaxPointLights) + " are supported");
-  GLint maxTexture = 0, maxLayers = 0, maxViewport[2] = {0, 0};
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+  const gpu::GlLimits& limits = gpu::glLimits();
+  const GLint maxTexture = limits.maxTextureSize, maxLayers = limits.maxArrayTextureLayers;
+  const GLint* maxViewport = limits.maxViewportDims;
   if (settings.shadowMapSize > maxTexture)
     throw std::invalid_argument("render.shadow_map_size: " + std::to_string(settings.shadowMapSize) +
                                 " exceeds this GPU's GL_MAX_TEXTURE_SIZE of " + std::to_string(maxTexture));

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gpu/gl_limits.h"
 #include "sss/maps/map_count.h"
 #include "sss/maps/map_history.h"
 #include "sss/maps/map_resolution.h"
@@ -196,10 +197,9 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
   if (dir > kMaxSssDirectionalLights || point > kMaxSssPointLights)
     throw std::invalid_argument("the radiosity maps take at most " + std::to_string(kMaxSssDirectionalLights) +
                                 " directional and " + std::to_string(kMaxSssPointLights) + " point lights");
-  GLint maxLayers = 0, maxTexture = 0, maxCube = 0;
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  const gpu::GlLimits& limits = gpu::glLimits();
+  const GLint maxLayers = limits.maxArrayTextureLayers, maxTexture = limits.maxTextureSize,
+              maxCube = limits.maxCubeMapTextureSize;
   const int k = mapCount(scene, settings);
   if (k > maxLayers)
     throw std::invalid_argument("sss.maps: " + std::to_string(k) + " maps exceed this GPU's "
@@ -249,9 +249,7 @@ void RadiosityMaps::renderLightGBuffers(const Scene& scene, const RenderSettings
   slotTable_ = translucentSlotTable(scene);
   sphere_ = translucentBounds(scene, geometry);
   shortestDiffusionMm_ = shortestDiffusionLengthMm(scene);
-  GLint maxTexture = 0, maxCube = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  const GLint maxTexture = gpu::glLimits().maxTextureSize, maxCube = gpu::glLimits().maxCubeMapTextureSize;
   lightMapSize_ = effectiveLightMapSize(scene, settings, sphere_.radius, std::min(maxTexture, maxCube));
   // sss.light_map_auto sizes the G-buffers from the geometry, so only now can the budget count them.
   if (lightMapSize_ != settings.sss.lightMapSize) checkMemoryBudget(scene, settings, lightMapSize_, mapSize_);
@@ -425,8 +423,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   if (update == MapsUpdate::Restart || frames_ == 0 || mapSize_ == 0) {
     mapSize_ = s.mapSize;
     if (s.mapSize == kAuto) {
-      GLint maxTexture = 0;
-      glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+      const GLint maxTexture = gpu::glLimits().maxTextureSize;
       const double pixels = projectedDiameterPixels(scene.camera, settings.height, sphere_);
       mapSize_ = autoMapSize(2.0 * sphere_.radius * 1000.0, shortestDiffusionMm_, pixels, maxTexture);
       if (mapSize_ != maps_.width()) checkMemoryBudget(scene, settings, lightMapSize_, mapSize_);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gpu/gl_limits.h"
 #include "sss/maps/radiosity_estimator.h"
 #include "sss/view_setup.h"
 
@@ -136,19 +137,13 @@ bool VirtualPointLights::applies(const Scene& scene, const RenderSettings& setti
 
 void VirtualPointLights::checkLimits(const Scene& scene, const RenderSettings& settings) {
   if (!applies(scene, settings)) return;
-  GLint maxCube = 0, maxBlock = 0;
-  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
-  glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  const GLint maxCube = gpu::glLimits().maxCubeMapTextureSize, maxBlock = gpu::glLimits().maxShaderStorageBlockSize;
   if (settings.vpl.cubeSize > maxCube)
     throw std::invalid_argument("vpl.cube_size: " + std::to_string(settings.vpl.cubeSize) +
                                 " exceeds this GPU's GL_MAX_CUBE_MAP_TEXTURE_SIZE of " + std::to_string(maxCube));
   // The largest block is the parts' (kVplParts records per VPL).
   const auto bytes = static_cast<long long>(settings.vpl.count) * kVplParts * static_cast<long long>(sizeof(VplRecord));
-  if (settings.vpl.shadows && 6 * settings.vpl.shadowClusters > [] {
-        GLint layers = 0;
-        glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
-        return layers;
-      }())
+  if (settings.vpl.shadows && 6 * settings.vpl.shadowClusters > gpu::glLimits().maxArrayTextureLayers)
     throw std::invalid_argument("vpl.shadow_clusters: " + std::to_string(settings.vpl.shadowClusters) +
                                 " cube maps exceed this GPU's GL_MAX_ARRAY_TEXTURE_LAYERS");
   if (settings.vpl.shadows && settings.vpl.shadowSize > maxCube)

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gpu/gl_limits.h"
 #include "sss/light_uniforms.h"
 #include "sss/maps/radiosity_maps.h"
 
@@ -75,8 +76,7 @@ void ImageSpaceSss::checkLimits(const Scene& scene, const RenderSettings& settin
   if (translucent > kMaxTranslucentObjects)
     throw std::invalid_argument("the scene has " + std::to_string(translucent) + " translucent objects; the image-space "
                                 "method holds at most " + std::to_string(kMaxTranslucentObjects));
-  GLint maxBlock = 0;
-  glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  const GLint maxBlock = gpu::glLimits().maxShaderStorageBlockSize;
   const std::size_t bytes = patternBytes(translucent, settings.imageSpace);
   if (bytes > static_cast<std::size_t>(maxBlock))
     throw std::invalid_argument("image_space.samples × image_space.tile²: the sample pattern needs " +

@@ -4,6 +4,8 @@
 #include <climits>
 #include <stdexcept>
 
+#include "gpu/gl_limits.h"
+
 namespace tallow::sss {
 namespace {
 
@@ -58,11 +60,9 @@ void Sslpv::checkLimits(const Scene& scene, const RenderSettings& settings) {
   if (s.skip >= s.steps)
     throw std::invalid_argument("sslpv.skip: " + std::to_string(s.skip) + " of " + std::to_string(s.steps) +
                                 " sslpv.steps would leave the accumulation grid empty; it must be less than sslpv.steps");
-  GLint max3d = 0, maxTexture = 0, maxLayers = 0, maxCube = 0;
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxCube);
+  const gpu::GlLimits& limits = gpu::glLimits();
+  const GLint max3d = limits.max3dTextureSize, maxTexture = limits.maxTextureSize,
+              maxLayers = limits.maxArrayTextureLayers, maxCube = limits.maxCubeMapTextureSize;
   const int objects = translucentCount(scene);
   if (s.grid > max3d)
     throw std::invalid_argument("sslpv.grid: " + std::to_string(s.grid) + " exceeds this GPU's GL_MAX_3D_TEXTURE_SIZE of " +
