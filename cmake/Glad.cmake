@@ -3,7 +3,7 @@
 find_program(GLAD_EXECUTABLE glad REQUIRED)
 set(GLAD_OUT "${CMAKE_BINARY_DIR}/glad")
 set(GLAD_ARGS --quiet --api gl:core=4.5
-    --extensions GL_KHR_debug,GL_NVX_gpu_memory_info,GL_ATI_meminfo
+    --extensions GL_KHR_debug,GL_NVX_gpu_memory_info,GL_ATI_meminfo,GL_ARB_shader_viewport_layer_array,GL_ARB_pipeline_statistics_query
     --reproducible --out-path "${GLAD_OUT}" c)
 if(NOT EXISTS "${GLAD_OUT}/src/gl.c" OR NOT "${GLAD_ARGS}" STREQUAL "${TALLOW_GLAD_ARGS_USED}")
   execute_process(COMMAND "${GLAD_EXECUTABLE}" ${GLAD_ARGS} RESULT_VARIABLE glad_rc ERROR_VARIABLE glad_err)

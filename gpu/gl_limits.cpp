@@ -14,6 +14,10 @@ void readGlLimits() {
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &l.maxArrayTextureLayers);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, l.maxViewportDims);
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &l.maxShaderStorageBlockSize);
+  glGetIntegerv(GL_MAX_GEOMETRY_OUTPUT_VERTICES, &l.maxGeometryOutputVertices);
+  glGetIntegerv(GL_MAX_TRANSFORM_FEEDBACK_BUFFERS, &l.maxTransformFeedbackBuffers);
+  l.layerInVertexShader = GLAD_GL_ARB_shader_viewport_layer_array != 0;
+  l.pipelineStatistics = GLAD_GL_ARB_pipeline_statistics_query != 0;
   gLimits = l;
   gRead = true;
 }

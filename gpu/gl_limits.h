@@ -14,6 +14,10 @@ struct GlLimits {
   GLint maxArrayTextureLayers = 0;  ///< GL_MAX_ARRAY_TEXTURE_LAYERS
   GLint maxViewportDims[2] = {0, 0};  ///< GL_MAX_VIEWPORT_DIMS
   GLint maxShaderStorageBlockSize = 0;  ///< GL_MAX_SHADER_STORAGE_BLOCK_SIZE (as GLint, as before)
+  GLint maxGeometryOutputVertices = 0;   ///< GL_MAX_GEOMETRY_OUTPUT_VERTICES (dual contouring's quads.geom)
+  GLint maxTransformFeedbackBuffers = 0; ///< GL_MAX_TRANSFORM_FEEDBACK_BUFFERS
+  bool layerInVertexShader = false;  ///< GL_ARB_shader_viewport_layer_array: gl_Layer in a vertex shader
+  bool pipelineStatistics = false;   ///< GL_ARB_pipeline_statistics_query (core in 4.6)
 };
 
 /// Reads the limits of the current context (GlContext::loadGl calls it).

@@ -12,6 +12,7 @@
 #include "sss/bloom.h"
 #include "sss/local_exposure.h"
 #include "sss/field_objects.h"
+#include "sss/maps/gbuffer_formats.h"
 #include "sss/maps/radiosity_maps.h"
 #include "sss/maps/virtual_point_lights.h"
 #include "sss/peers/image_space.h"
@@ -78,8 +79,11 @@ std::size_t shadowMapBytes(const Scene& scene, const RenderSettings& settings) {
 std::size_t lightGBufferBytes(int directional, int point, int size) {
   std::size_t bytes = 0;
   if (directional > 0)
-    bytes += 2 * layers2D(GL_RGBA32F, size, directional) + layers2D(GL_DEPTH_COMPONENT32F, size, directional);
-  if (point > 0) bytes += 2 * cubes(GL_RGBA32F, size, point) + cubes(GL_DEPTH_COMPONENT32F, size, point);
+    bytes += layers2D(kGBufferPositionFormat, size, directional) + layers2D(gBufferNormalFormat(), size, directional) +
+             layers2D(GL_DEPTH_COMPONENT32F, size, directional);
+  if (point > 0)
+    bytes += cubes(kGBufferPositionFormat, size, point) + cubes(gBufferNormalFormat(), size, point) +
+             cubes(GL_DEPTH_COMPONENT32F, size, point);
   return bytes;
 }
 
@@ -90,10 +94,11 @@ std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history)
   std::size_t bytes = layers2D(GL_RGBA32F, size, k, levels) + layers2D(GL_DEPTH_COMPONENT32F, size, k);
   // The maps' G-buffer (position, normal): the compute gather's input and the history's; the
   // history keeps the last frame's as well,
-  if (computeGather || history) bytes += 2 * layers2D(GL_RGBA32F, size, k);
+  const std::size_t gbuffer = layers2D(kGBufferPositionFormat, size, k) + layers2D(gBufferNormalFormat(), size, k);
+  if (computeGather || history) bytes += gbuffer;
   // and, on a reuse, the kept history and this frame's mean beside it, both mipmapped (the latter
   // also holds what a still after motion fades out).
-  if (history) bytes += 2 * layers2D(GL_RGBA32F, size, k) + 2 * layers2D(GL_RGBA32F, size, k, levels);
+  if (history) bytes += gbuffer + 2 * layers2D(GL_RGBA32F, size, k, levels);
   return bytes;
 }
 
@@ -103,7 +108,7 @@ std::size_t vplBytes(const VplSettings& vpl) {
     return Texture::bytesFor(GL_TEXTURE_CUBE_MAP, format, vpl.cubeSize, vpl.cubeSize, 6, 1);
   };
   const auto count = static_cast<std::size_t>(vpl.count);
-  return 2 * cube(GL_RGBA32F) + cube(GL_DEPTH_COMPONENT32F) + (1 + kVplParts) * count * sizeof(VplRecord) + count * sizeof(glm::vec4) +
+  return cube(kGBufferPositionFormat) + cube(gBufferNormalFormat()) + cube(GL_DEPTH_COMPONENT32F) + (1 + kVplParts) * count * sizeof(VplRecord) + count * sizeof(glm::vec4) +
          sizeof(std::array<glm::mat4, 6>);
 }
 

@@ -4,12 +4,17 @@
 
 #include <algorithm>
 
+#include "gpu/glsl_shared.h"
 #include "sss/view_setup.h"
+
+namespace tallow::glsl {
+#include "shaders/common/cube_shadow_depth.glsl"
+}  // namespace tallow::glsl
 
 namespace tallow::sss {
 namespace {
 
-constexpr float kPointNearFraction = 1e-3f;  // near plane of a point light's cube, × its range
+using glsl::kCubeShadowNearFraction;  // the receivers' look-up assumes this near plane
 
 gpu::Texture makeDepthTexture(bool cube, int size, int layers) {
   gpu::Texture t = cube ? gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, size, layers)
@@ -49,7 +54,7 @@ struct DepthOnlyState {
 }  // namespace
 
 ShadowPass::ShadowPass(const gpu::ShaderLibrary& shaders)
-    : program_(shaders, {{{GL_VERTEX_SHADER, "shadow_depth.vert"}, {GL_FRAGMENT_SHADER, "shadow_depth.frag"}}}),
+    : program_(shaders, {{{GL_VERTEX_SHADER, "shadow_depth.vert"}}}),  // depth only: early depth kept
       dummyDirectional_(makeDepthTexture(false, 1, 1)),
       dummyPoint_(makeDepthTexture(true, 1, 1)) {
   const float one = 1.0f;
@@ -107,7 +112,7 @@ void ShadowPass::renderDirectional(const Scene& scene, const RenderSettings& set
 
   DepthOnlyState state;
   program_.use();
-  program_.set("uStoreDistance", 0);
+  program_.set("uLightOrigin", glm::vec3(0.0f));
   glViewport(0, 0, size, size);
   // [-1,1]³ → [0,1]³ for texture lookup.
   const glm::mat4 toTexture = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
@@ -140,7 +145,6 @@ void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings,
 
   DepthOnlyState state;
   program_.use();
-  program_.set("uStoreDistance", 1);
   glViewport(0, 0, size, size);
   const geometry::Aabb bounds = geometry.worldBounds();
   for (std::size_t i = 0; i < n; ++i) {
@@ -155,9 +159,9 @@ void ShadowPass::renderPoint(const Scene& scene, const RenderSettings& settings,
       range = std::max(range, glm::length(corner - p) * 1.01f);
     }
     layers_.pointRange[i] = range;
-    program_.set("uLightPosition", p);
-    program_.set("uRange", range);
-    const auto faces = cubeFaceViewProjections(p, range * kPointNearFraction, range);
+    // About the light (shadow_depth.vert subtracts its position first, as the receivers do).
+    program_.set("uLightOrigin", p);
+    const auto faces = cubeFaceViewProjections(glm::vec3(0.0f), range * kCubeShadowNearFraction, range);
     for (int f = 0; f < 6; ++f) {
       const int face = 6 * cube + f;
       pointTargets_[static_cast<std::size_t>(face)].attach({}, {&point_, 0, face}, "point shadow map").bind();

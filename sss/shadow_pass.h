@@ -1,7 +1,8 @@
 #pragma once
 // Shadow maps of the lights that cast shadows: one layer of a 2D depth array per directional
-// light (orthographic, fitted to the scene), one cube of a cube-map array per point light
-// (distance / range as depth). Receivers sample them with hardware comparison. The maps outlive a
+// light (orthographic, fitted to the scene), one cube of a cube-map array per point light (each
+// face's perspective depth, which the receivers compute: common/cube_shadow_depth.glsl). Receivers
+// sample them with hardware comparison. The maps outlive a
 // frame: the passes shadow.directional and shadow.point (sss/frame_passes.h) redraw them only when
 // the geometry, the lights or the map size changed; receivers use a light's layer only while
 // render.shadows is on and the light casts shadows (setLightUniforms).

@@ -1,6 +1,10 @@
 // Shader sources without a GL context: includes, #line mapping, driver-log mapping.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <regex>
+#include <sstream>
+
 #include "gpu/shader_library.h"
 #include "support/temp_dir.h"
 
@@ -63,6 +67,26 @@ TEST(ShaderLibrary, MapsMesaAndNvidiaLogsToFileAndLine) {
   EXPECT_EQ(gpu::mapShaderLog("0:100003(19): error: `y' undeclared\n", s),
             "shaders/common/lights.glsl:3: error: `y' undeclared\n");
   EXPECT_EQ(gpu::mapShaderLog("something else\n", s), "something else\n");
+}
+
+// Issue 39, point 3: a fragment shader that writes gl_FragDepth turns off early depth for its
+// whole pass (the point lights' shadow cube spent most of its time shading hidden triangles).
+// Shadow maps hold the rasterised depth (common/cube_shadow_depth.glsl); no shader writes it.
+TEST(ShaderSources, NoShaderWritesGlFragDepth) {
+  const std::filesystem::path root = std::filesystem::path(TALLOW_TEST_SOURCE_DIR) / "shaders";
+  const std::regex write(R"(gl_FragDepth\s*(=[^=]|[-+*/]=))");
+  int files = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+    if (!entry.is_regular_file()) continue;
+    ++files;
+    std::ifstream in(entry.path());
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      const std::string code = line.substr(0, line.find("//"));
+      EXPECT_FALSE(std::regex_search(code, write)) << entry.path() << ":" << n << ": " << line;
+    }
+  }
+  EXPECT_GT(files, 50);
 }
 
 }  // namespace

@@ -1,4 +1,6 @@
 // Light and shadow uniforms shared by the passes that shade opaque surfaces.
+#include "common/cube_shadow_depth.glsl"
+
 const int MAX_DIRECTIONAL_LIGHTS = 32;
 const int MAX_POINT_LIGHTS = 8;
 
@@ -13,7 +15,7 @@ uniform int uPointCount;
 uniform vec3 uPointPosition[MAX_POINT_LIGHTS];
 uniform vec3 uPointIntensity[MAX_POINT_LIGHTS];  // W/sr
 uniform int uPointShadowLayer[MAX_POINT_LIGHTS]; // cube in uPointShadow, −1 = no shadow
-uniform float uPointShadowRange[MAX_POINT_LIGHTS];  // distance stored as depth 1
+uniform float uPointShadowRange[MAX_POINT_LIGHTS];  // far plane of the light's shadow cube
 uniform float uPointShadowTexelAngle;               // angular size of one cube texel [rad]
 
 uniform sampler2DArrayShadow uDirShadow;
@@ -54,7 +56,7 @@ float pointVisibility(int i, vec3 p, vec3 n) {
   float dist = length(d);
   vec3 q = p + n * (normalOffsetTexels() * uPointShadowTexelAngle * dist);
   vec3 dq = q - uPointPosition[i];
-  return texture(uPointShadow, vec4(dq, float(layer)), length(dq) / uPointShadowRange[i]);
+  return texture(uPointShadow, vec4(dq, float(layer)), cubeShadowDepth(dq, uPointShadowRange[i]));
 }
 
 // Irradiance at p with normal n from every light, shadows included [W/m²].

@@ -1,6 +1,7 @@
 #version 450 core
 // One triangle into layer uLayerBase + instance of a 2D array or cube-map array (gl_Layer), seen
 // through that layer's view-projection: all K maps (or all light views) in one instanced draw.
+// The fallback for drivers without GL_ARB_shader_viewport_layer_array (see layered.vert).
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 

@@ -13,7 +13,7 @@ layout(std430, binding = 8) readonly buffer VplPartRecords { VplGpu vplParts[]; 
 uniform int uVplCount;  // 0: no VPLs this frame
 uniform vec3 uVplCentre;  // c, the point the VPLs' directions start from (maps/vpl.comp)
 
-// VPL shadows (vpl.shadows): each VPL's cluster has a cube shadow map (distance / range as depth)
+// VPL shadows (vpl.shadows): each VPL's cluster has a cube shadow map (common/cube_shadow_depth.glsl)
 // from a camera just outside the cluster's VPLs; the receiver is tested against it, with the
 // normal offset of the point lights' shadows (common/lights.glsl).
 const int MAX_VPL_CLUSTERS = 64;
@@ -32,7 +32,7 @@ float vplVisibility(int v, vec3 p, vec3 n) {
   vec3 centre = uVplClusterCentre[c];
   vec3 q = p + n * (normalOffsetTexels() * uVplShadowTexelAngle * length(p - centre));
   vec3 dq = q - centre;
-  return texture(uVplShadow, vec4(dq, float(uVplClusterCube[c])), length(dq) / range);
+  return texture(uVplShadow, vec4(dq, float(uVplClusterCube[c])), cubeShadowDepth(dq, range));
 }
 
 // A VPL's irradiance at p as a point: F_t(θ_v) (B/π) A_v cos θ_v cos θ_r / (d² + A_v/π).

@@ -10,6 +10,8 @@
 #include <stdexcept>
 
 #include "gpu/gl_limits.h"
+#include "sss/maps/gbuffer_formats.h"
+#include "sss/maps/layered_program.h"
 #include "sss/maps/map_count.h"
 #include "sss/maps/map_history.h"
 #include "sss/maps/map_resolution.h"
@@ -20,7 +22,7 @@
 namespace tallow::sss {
 namespace {
 
-constexpr GLuint kLayerViewsBinding = 4;  // layered.geom
+constexpr GLuint kLayerViewsBinding = 4;  // maps/layered.vert or .geom (layered_program.h)
 
 const glm::mat4 kToTexture =
     glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
@@ -156,18 +158,10 @@ int effectiveLightMapSize(const Scene& scene, const RenderSettings& settings, fl
 }
 
 RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
-    : gbufferProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
-                                 {GL_GEOMETRY_SHADER, "maps/layered.geom"},
-                                 {GL_FRAGMENT_SHADER, "maps/light_gbuffer.frag"}}}),
-      depthProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
-                               {GL_GEOMETRY_SHADER, "maps/layered.geom"},
-                               {GL_FRAGMENT_SHADER, "maps/map_depth.frag"}}}),
-      mapProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
-                             {GL_GEOMETRY_SHADER, "maps/layered.geom"},
-                             {GL_FRAGMENT_SHADER, "maps/radiosity_map.frag"}}}),
-      mapGBufferProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
-                                    {GL_GEOMETRY_SHADER, "maps/layered.geom"},
-                                    {GL_FRAGMENT_SHADER, "maps/map_gbuffer.frag"}}}),
+    : gbufferProgram_(shaders, layeredProgram("maps/light_gbuffer.frag")),
+      depthProgram_(shaders, layeredProgram("maps/map_depth.frag")),
+      mapProgram_(shaders, layeredProgram("maps/radiosity_map.frag")),
+      mapGBufferProgram_(shaders, layeredProgram("maps/map_gbuffer.frag")),
       mapCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/radiosity_map.comp"}}}),
       historyCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/history.comp"}}}),
       historyMerge_(shaders, {{{GL_COMPUTE_SHADER, "maps/history_merge.comp"}}}),
@@ -221,14 +215,14 @@ void RadiosityMaps::checkLimits(const Scene& scene, const RenderSettings& settin
 void RadiosityMaps::ensureLightTargets(int dirCount, int pointCount) {
   const int lightSize = lightMapSize_;
   if (dirCount > 0 && (!dirPosition_.id() || dirPosition_.width() != lightSize || dirPosition_.depth() != dirCount)) {
-    dirPosition_ = colourArray(GL_RGBA32F, lightSize, dirCount);
-    dirNormal_ = colourArray(GL_RGBA32F, lightSize, dirCount);
+    dirPosition_ = colourArray(kGBufferPositionFormat, lightSize, dirCount);
+    dirNormal_ = colourArray(gBufferNormalFormat(), lightSize, dirCount);
     dirDepth_ = gpu::Texture::create2DArray(GL_DEPTH_COMPONENT32F, lightSize, lightSize, dirCount);
   }
   if (pointCount > 0 &&
       (!pointPosition_.id() || pointPosition_.width() != lightSize || pointPosition_.depth() != 6 * pointCount)) {
-    pointPosition_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
-    pointNormal_ = cubeArray(GL_RGBA32F, lightSize, pointCount);
+    pointPosition_ = cubeArray(kGBufferPositionFormat, lightSize, pointCount);
+    pointNormal_ = cubeArray(gBufferNormalFormat(), lightSize, pointCount);
     pointDepth_ = gpu::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, lightSize, pointCount);
   }
 }
@@ -476,12 +470,13 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
   const float one = 1.0f;
   const auto drawMapGBuffer = [&] {
     if (!mapPosition_.id() || mapPosition_.width() != size || mapPosition_.depth() != k) {
-      mapPosition_ = colourArray(GL_RGBA32F, size, k);
-      mapNormal_ = colourArray(GL_RGBA32F, size, k);
+      for (gpu::TargetFramebuffer& t : mapGBufferTargets_) t.release();  // none keeps the old G-buffer
+      mapPosition_ = colourArray(kGBufferPositionFormat, size, k);
+      mapNormal_ = colourArray(gBufferNormalFormat(), size, k);
     }
     if (history && (!previousPosition_.id() || previousPosition_.width() != size || previousPosition_.depth() != k)) {
-      previousPosition_ = colourArray(GL_RGBA32F, size, k);
-      previousNormal_ = colourArray(GL_RGBA32F, size, k);
+      previousPosition_ = colourArray(kGBufferPositionFormat, size, k);
+      previousNormal_ = colourArray(gBufferNormalFormat(), size, k);
       // With the last frame's G-buffer, so that the first reuse allocates nothing the memory budget
       // (radiosityMapBytes) did not count from the start.
       historyMean_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
@@ -493,7 +488,8 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
       historyMean_ = gpu::Texture();
       historyFresh_ = gpu::Texture();
     }
-    gpu::bindGBuffer(mapGBufferTarget_, mapPosition_, mapNormal_, mapDepth_, 1.0f, "scattered radiosity maps' G-buffer");
+    gpu::bindGBuffer(mapGBufferTargets_[mapGBufferSide_], mapPosition_, mapNormal_, mapDepth_, 1.0f,
+                     "scattered radiosity maps' G-buffer");
     mapGBufferProgram_.use();
     setSlotUniforms(mapGBufferProgram_, slotTable_, false);
     drawTranslucent(mapGBufferProgram_);
@@ -506,6 +502,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     // for this frame's estimate; mergeHistory adds the two back after the gather.
     std::swap(mapPosition_, previousPosition_);
     std::swap(mapNormal_, previousNormal_);
+    mapGBufferSide_ ^= 1;  // the other pair's target: attached to it already, nothing re-pointed
     drawMapGBuffer();
     const HistoryTolerance tolerance = historyTolerance(scene, s.historyMove);
     gpu::Program& p = historyCompute_;

@@ -13,6 +13,7 @@
 // Opaque objects are drawn into the light G-buffers as occluders (tag 0) but get no maps.
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,8 +52,8 @@ std::vector<MapView> radiosityMapViews(const std::vector<glm::vec3>& directions,
 int mapCount(const Scene& scene, const RenderSettings& settings);
 
 /// Draws the translucent scene objects (slots[objectIndex] ≥ 0) with `program` — maps/layered.vert
-/// and maps/layered.geom, uniforms uModel, uNormalMatrix, uSlot — once into each of `instances`
-/// layers whose view-projections `layerViews` holds (std430 mat4 per layer, layered.geom's binding).
+/// (+ layered.geom: layeredProgram), uniforms uModel, uNormalMatrix, uSlot — once into each of `instances`
+/// layers whose view-projections `layerViews` holds (std430 mat4 per layer, binding 4).
 void drawTranslucentLayered(gpu::Program& program, const SceneGeometry& geometry, const std::vector<int>& slots,
                             const gpu::Buffer& layerViews, int instances);
 
@@ -199,11 +200,15 @@ class RadiosityMaps {
   /// On a history reuse: the kept history (mean, frames), and with sss.history_rescale this frame's
   /// mean where a history was kept; both mipmapped for the coarse ratio (maps/history_merge.comp).
   gpu::Texture historyMean_, historyFresh_;
-  gpu::Buffer dirLayerViews_, pointLayerViews_;  ///< std430 mat4 per light G-buffer layer (layered.geom)
+  gpu::Buffer dirLayerViews_, pointLayerViews_;  ///< std430 mat4 per light G-buffer layer (layered program)
   // The passes' targets, made once (gpu::TargetFramebuffer): light G-buffers, the maps' G-buffer, the
   // depth pre-pass and the fragment gather's.
-  gpu::TargetFramebuffer dirTarget_, pointTarget_, mapGBufferTarget_, mapDepthTarget_, mapShadeTarget_;
-  gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered.geom)
+  gpu::TargetFramebuffer dirTarget_, pointTarget_, mapDepthTarget_, mapShadeTarget_;
+  /// The map G-buffer's target per side of the history's ping-pong (mapPosition_ and
+  /// previousPosition_ swap each reusing frame): each keeps its own pair attached.
+  std::array<gpu::TargetFramebuffer, 2> mapGBufferTargets_;
+  std::size_t mapGBufferSide_ = 0;
+  gpu::Buffer mapLayerViews_;  ///< std430 mat4 per map: its view-projection (layered program)
   gpu::Buffer cameraViews_;    ///< the maps as Algorithm 1 reads them (cameraViews())
   std::vector<MapView> views_;
   std::vector<glm::mat4> dirMatrices_;  ///< world → [0,1]³ of each directional light's G-buffer

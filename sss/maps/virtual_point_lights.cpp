@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "gpu/gl_limits.h"
+#include "sss/maps/gbuffer_formats.h"
+#include "sss/maps/layered_program.h"
 #include "sss/maps/radiosity_estimator.h"
 #include "sss/view_setup.h"
 
@@ -125,9 +127,7 @@ std::vector<glm::vec3> surroundedLights(const Scene& scene, const glm::vec3& box
 }
 
 VirtualPointLights::VirtualPointLights(const gpu::ShaderLibrary& shaders)
-    : cubeProgram_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
-                              {GL_GEOMETRY_SHADER, "maps/layered.geom"},
-                              {GL_FRAGMENT_SHADER, "maps/map_gbuffer.frag"}}}),
+    : cubeProgram_(shaders, layeredProgram("maps/map_gbuffer.frag")),
       compute_(shaders, {{{GL_COMPUTE_SHADER, "maps/vpl.comp"}}}),
       shadows_(shaders) {}
 
@@ -211,9 +211,9 @@ void VirtualPointLights::render(const Scene& scene, const RenderSettings& settin
   // Step 1: the outermost surface around the centre.
   const int cube = v.cubeSize;
   if (!cubePosition_.id() || cubePosition_.width() != cube) {
-    cubePosition_ = gpu::Texture::createCube(GL_RGBA32F, cube);
+    cubePosition_ = gpu::Texture::createCube(kGBufferPositionFormat, cube);
     cubePosition_.setFilter(GL_NEAREST, GL_NEAREST);
-    cubeNormal_ = gpu::Texture::createCube(GL_RGBA32F, cube);
+    cubeNormal_ = gpu::Texture::createCube(gBufferNormalFormat(), cube);
     cubeNormal_.setFilter(GL_NEAREST, GL_NEAREST);
     cubeDepth_ = gpu::Texture::createCube(GL_DEPTH_COMPONENT32F, cube);
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sss/maps/layered_program.h"
 #include "sss/maps/radiosity_maps.h"
 
 namespace tallow::sss {
@@ -49,9 +50,7 @@ gpu::Texture gridTexture(int size) {
 }  // namespace
 
 SslpvMedium::SslpvMedium(const gpu::ShaderLibrary& shaders)
-    : voxelize_(shaders, {{{GL_VERTEX_SHADER, "maps/layered.vert"},
-                           {GL_GEOMETRY_SHADER, "maps/layered.geom"},
-                           {GL_FRAGMENT_SHADER, "peers/sslpv/voxelize.frag"}}}),
+    : voxelize_(shaders, layeredProgram("peers/sslpv/voxelize.frag")),
       medium_(shaders, {{{GL_COMPUTE_SHADER, "peers/sslpv/medium.comp"}}}) {}
 
 void SslpvMedium::ensureTextures(int size) {

@@ -52,7 +52,7 @@ class SslpvMedium {
   gpu::Program voxelize_, medium_;
   gpu::Texture parity_;  ///< r32ui 2D array: 2N × 2N × (slots · 3 axes · words)
   gpu::Texture extinction_, scattering_, anisotropy_;
-  gpu::Buffer axisViews_;  ///< the three orthographic views (layered.geom's storage block)
+  gpu::Buffer axisViews_;  ///< the three orthographic views (the layered passes' storage block)
 };
 
 }  // namespace tallow::sss
