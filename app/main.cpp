@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   viewCmd->add_option("--time", view.timeS, "animation time of the first frame [s] (default: the preset's start_s)");
   viewCmd->add_flag("--paused", view.paused, "start with the animation paused");
   viewCmd->add_flag("--no-panel", view.hidePanel, "hide the ImGui panel");
+  viewCmd->add_option("--vsync", view.vsync, "wait for the display's refresh at each frame (true, the default, or false: as fast as the GPU renders, for timing)");
 
   tallow::app::CaptureOptions capture;
   auto* captureCmd = app.add_subcommand("capture", "render frames headless into PNG, EXR and stats.json");

@@ -186,8 +186,6 @@ void GpuDualContouring::extract() {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
   // 2. Vertices of the active blocks' sign-changing cells.
-  GLint callerFramebuffer = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &callerFramebuffer);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, discardTarget_.id());
   glEnable(GL_RASTERIZER_DISCARD);
   emptyVao_.bind();
@@ -233,7 +231,7 @@ void GpuDualContouring::extract() {
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   glBindVertexArray(0);
   glDisable(GL_RASTERIZER_DISCARD);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(callerFramebuffer));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);  // the default, as every pass leaves it (asked for nothing)
   glQueryCounter(timerStop_.id(), GL_TIMESTAMP);
 }
 
@@ -253,6 +251,10 @@ void GpuDualContouring::checkOverflow() const {
 }
 
 std::size_t GpuDualContouring::triangleCount() const { return meshWritten_.result(); }
+std::optional<std::size_t> GpuDualContouring::triangleCountIfAvailable() const {
+  if (!meshWritten_.resultAvailable()) return std::nullopt;
+  return meshWritten_.result();
+}
 std::size_t GpuDualContouring::vertexCount() const { return vertexWritten_.result(); }
 double GpuDualContouring::lastExtractionMs() const {
   return static_cast<double>(timerStop_.result() - timerStart_.result()) * 1e-6;

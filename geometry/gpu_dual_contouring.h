@@ -87,6 +87,8 @@ class GpuDualContouring {
   /// std::runtime_error when a buffer overflowed.
   TriangleMesh readBack() const;
   std::size_t triangleCount() const;   ///< GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN of pass 4
+  /// triangleCount without a wait: nullopt while the GPU has not finished the extraction.
+  std::optional<std::size_t> triangleCountIfAvailable() const;
   std::size_t vertexCount() const;     ///< vertices captured in pass 2
   std::size_t activeBlockCount() const;
   std::size_t blockCount() const { return static_cast<std::size_t>(blocks_) * blocks_ * blocks_; }

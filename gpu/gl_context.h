@@ -23,6 +23,7 @@ struct ContextOptions {
   int windowHeight = 540;
   std::string title = "Tallow";
   bool visible = true;  ///< GLFW only
+  int swapInterval = 1;  ///< GLFW only: glfwSwapInterval (1: vsync, 0: swap at once)
   /// Route GL debug output (KHR_debug) into the log. On by default in debug builds.
 #ifdef NDEBUG
   bool debugOutput = false;

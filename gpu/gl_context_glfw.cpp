@@ -52,7 +52,7 @@ class GlfwContext final : public GlContext {
       throw ContextError("OpenGL 4.5 core is required, but glfw offers " + offer);
     }
     makeCurrent();
-    glfwSwapInterval(1);
+    glfwSwapInterval(options.swapInterval);
     loadGl(glfwProc, "glfw", options.debugOutput);
   }
   ~GlfwContext() override {

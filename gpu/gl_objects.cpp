@@ -348,7 +348,20 @@ void VertexArray::setIndexBuffer(const Buffer& buffer) { glVertexArrayElementBuf
 
 Query::Query(GLenum target) : target_(target) {
   GLuint id = 0;
-  glCreateQueries(target, 1, &id);
+  switch (target) {
+    // GL_ARB_pipeline_statistics_query's targets: Mesa 22.3 refuses them in glCreateQueries
+    // (GL_INVALID_ENUM, id 0) but not in glBeginQuery, so the name is generated and becomes a
+    // query object at its first glBeginQuery (every use here begins it before asking for results).
+    case GL_VERTICES_SUBMITTED_ARB: case GL_PRIMITIVES_SUBMITTED_ARB: case GL_VERTEX_SHADER_INVOCATIONS_ARB:
+    case GL_TESS_CONTROL_SHADER_PATCHES_ARB: case GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB:
+    case GL_GEOMETRY_SHADER_INVOCATIONS: case GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB:
+    case GL_FRAGMENT_SHADER_INVOCATIONS_ARB: case GL_COMPUTE_SHADER_INVOCATIONS_ARB:
+    case GL_CLIPPING_INPUT_PRIMITIVES_ARB: case GL_CLIPPING_OUTPUT_PRIMITIVES_ARB:
+      glGenQueries(1, &id);
+      break;
+    default:
+      glCreateQueries(target, 1, &id);
+  }
   name_ = detail::GlName<detail::QueryTraits>(id);
 }
 
@@ -397,6 +410,17 @@ bool Fence::signaled() const {
   if (!sync_) return false;
   const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
   return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+}
+
+void Fence::wait() const {
+  if (!sync_) return;
+  GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+  for (;;) {
+    const GLenum r = glClientWaitSync(sync_, flags, 1'000'000'000);  // 1 s a try
+    if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED) return;
+    if (r == GL_WAIT_FAILED) throw std::runtime_error("glClientWaitSync failed");
+    flags = 0;  // flushed once already
+  }
 }
 
 void unbindComputeState(int images, int textures) {

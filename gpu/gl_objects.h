@@ -271,6 +271,8 @@ class Fence {
   bool empty() const { return sync_ == nullptr; }
   /// True once the GPU passed the fence; never waits (flushes, so that it will pass).
   bool signaled() const;
+  /// Waits until the GPU has passed the fence (at once if it has).
+  void wait() const;
 
  private:
   GLsync sync_ = nullptr;

@@ -5,10 +5,12 @@
         --size 160x90 --frames 8 --fps 8 --time 10 --out /tmp/cap
     python3 scripts/trace_frame_calls.py cap.trace
 
-A capture ends each frame with glFinish (before its read-backs are written), so the trace is cut
-there: segment 0 is start-up and the first frame, the last one the read-backs of the last frame and
-the exit. Prints, per segment, the calls that create or delete GL objects, read results or targets
-back, or ask the driver for state — what a steady frame should not do.
+A capture ends each frame by copying its targets into the read-back ring (gpu::AsyncReadback:
+the pixel-pack buffer is unbound after the copies), so the trace is cut there: segment 0 is
+start-up and the first frame, the last one the fetch of the last frame and the exit. Prints, per
+segment, the calls that create or delete GL objects, read results or targets back (glGetTextureImage
+counts a target copied into a buffer, glGetNamedBufferSubData a buffer fetched), or ask the driver
+for state — what a steady frame should not do.
 """
 import collections
 import re
@@ -18,9 +20,10 @@ import sys
 WATCHED = [
     "glCreateFramebuffers", "glDeleteFramebuffers", "glCreateBuffers", "glDeleteBuffers",
     "glCreateTextures", "glDeleteTextures", "glCreateQueries", "glDeleteQueries",
-    "glCreateVertexArrays", "glDeleteVertexArrays", "glGetIntegerv", "glGetInteger64v",
+    "glCreateVertexArrays", "glDeleteVertexArrays", "glGenQueries", "glFenceSync", "glDeleteSync", "glGetIntegerv", "glGetInteger64v",
     "glGetTextureImage", "glGetTextureSubImage", "glReadPixels", "glGetNamedBufferSubData",
     "glGetQueryObjectui64v", "glGetQueryObjectiv", "glGetQueryObjectuiv", "glCheckNamedFramebufferStatus",
+    "glClientWaitSync", "glFinish",
 ]
 
 
@@ -40,7 +43,7 @@ def main() -> int:
         if not m:
             continue
         segments[-1][m.group(1)] += 1
-        if m.group(1) == "glFinish":
+        if m.group(1) == "glBindBuffer" and "GL_PIXEL_PACK_BUFFER, buffer = 0)" in line:
             segments.append(collections.Counter())
     for i, calls in enumerate(segments):
         watched = ", ".join(f"{name} {calls[name]}" for name in WATCHED if calls[name])

@@ -19,7 +19,7 @@ std::size_t Bloom::bytesFor(int width, int height) {
          gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_RGBA32F, width, height, 1, 1);
 }
 
-void Bloom::apply(const gpu::Texture& radiance, float share, float exposureScale) {
+void Bloom::apply(const gpu::Texture& radiance, float share, float exposureScale, const gpu::Texture* coverage) {
   const int w = radiance.width(), h = radiance.height();
   if (!output_.id() || output_.width() != w || output_.height() != h) {
     pyramid_ = gpu::Texture::create2D(GL_RGBA32F, w, h, pyramidLevels(w, h));
@@ -39,7 +39,10 @@ void Bloom::apply(const gpu::Texture& radiance, float share, float exposureScale
   program_.set("uLevels", std::min(kLevels, pyramid_.levels() - 1));
   program_.set("uShare", share);
   program_.set("uExposureScale", exposureScale);
+  program_.set("uCoverage", 2);
+  program_.set("uCoverageAlpha", coverage ? 1 : 0);
   radiance.bind(0);
+  if (coverage) coverage->bind(2);
   // Step 0: the light above white into level 0 of the chain; then its box-filtered levels.
   program_.set("uStep", 0);
   glBindImageTexture(1, pyramid_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -52,7 +55,7 @@ void Bloom::apply(const gpu::Texture& radiance, float share, float exposureScale
   glBindImageTexture(0, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute(groupsX, groupsY, 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-  gpu::unbindComputeState(2, 2);
+  gpu::unbindComputeState(2, 3);
 }
 
 }  // namespace tallow::sss

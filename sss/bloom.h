@@ -24,8 +24,9 @@ class Bloom {
   static std::size_t bytesFor(int width, int height);
   /// The picture `radiance` with a share `share` ∈ (0, 1] of its light above white (at the exposure
   /// scale `exposureScale`) spread by the PSF, into output() (allocated on the first call and at a
-  /// new size).
-  void apply(const gpu::Texture& radiance, float share, float exposureScale);
+  /// new size). With `coverage` (the camera's), the output's alpha is its code
+  /// (common/coverage_masks.glsl); without, the picture's alpha.
+  void apply(const gpu::Texture& radiance, float share, float exposureScale, const gpu::Texture* coverage = nullptr);
   const gpu::Texture& output() const { return output_; }
   std::size_t bytes() const { return pyramid_.bytes() + output_.bytes(); }
 

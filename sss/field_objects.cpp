@@ -133,6 +133,17 @@ std::size_t FieldObjects::triangleCount() const {
   return n;
 }
 
+std::optional<std::size_t> FieldObjects::triangleCountIfAvailable() const {
+  std::size_t n = 0;
+  for (const auto& e : entries_)
+    if (e->extracted) {
+      const std::optional<std::size_t> count = e->dc->triangleCountIfAvailable();
+      if (!count) return std::nullopt;
+      n += *count;
+    }
+  return n;
+}
+
 std::size_t FieldObjects::bytes() const {
   std::size_t n = 0;
   for (const auto& e : entries_) {

@@ -10,6 +10,7 @@
 // GPU fill come from its sss::FieldSource (shared with `tallow mesh` / `field`), i.e. from its
 // kind's plug-in (sss/field_kind.h): nothing here names a kind.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "geometry/gpu_dual_contouring.h"
@@ -72,6 +73,8 @@ class FieldObjects {
   /// Triangles of the last extractions. Reads a transform-feedback query, so it waits for the
   /// GPU to finish the last extraction (a stall): for stats, not for the frame loop.
   std::size_t triangleCount() const;
+  /// triangleCount without a wait: nullopt while an extraction is still on the GPU.
+  std::optional<std::size_t> triangleCountIfAvailable() const;
   std::size_t bytes() const;
   /// Uploads of the fields' static GPU data so far (a melting mesh's grids: one per renderer).
   std::size_t meltGridUploads() const;

@@ -174,12 +174,13 @@ std::string shareReason(const char* key, float share, const char* what) {
   return std::string(key) + " = " + value + ": " + what;
 }
 
-/// The picture shown through `Effect` (Bloom, LocalExposure: apply(picture, share, exposure scale)
-/// and output()), which becomes the picture shown.
+/// The picture shown through `Effect` (Bloom, LocalExposure: apply(picture, share, exposure scale,
+/// coverage) and output()), which becomes the picture shown, its alpha the coverage's code
+/// (common/coverage_masks.glsl).
 template <class Effect>
 void showThrough(FrameContext& context, float share) {
   Effect& effect = context.modules.obtain<Effect>(context.shaders);
-  effect.apply(*context.shown, share, std::exp2(context.settings().toneMap.exposureEv));
+  effect.apply(*context.shown, share, std::exp2(context.settings().toneMap.exposureEv), &context.target.coverage);
   context.shown = &effect.output();
 }
 

@@ -28,7 +28,8 @@ std::size_t LocalExposure::bytesFor(int width, int height) {
          gpu::Texture::bytesFor(GL_TEXTURE_2D, GL_R32F, width, height, 1, 1);
 }
 
-void LocalExposure::apply(const gpu::Texture& picture, float strength, float exposureScale) {
+void LocalExposure::apply(const gpu::Texture& picture, float strength, float exposureScale,
+                          const gpu::Texture* coverage) {
   const int w = picture.width(), h = picture.height(), s = cellFor(w, h);
   const int gw = cells(w, s), gh = cells(h, s);
   if (!output_.id() || output_.width() != w || output_.height() != h) {
@@ -69,11 +70,14 @@ void LocalExposure::apply(const gpu::Texture& picture, float strength, float exp
   glDispatchCompute(groups(w), groups(h), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   program_.set("uStep", 5);
+  program_.set("uCoverage", 3);
+  program_.set("uCoverageAlpha", coverage ? 1 : 0);
+  if (coverage) coverage->bind(3);
   gain_.bind(2);
   glBindImageTexture(1, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute(groups(w), groups(h), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-  gpu::unbindComputeState(3, 3);
+  gpu::unbindComputeState(3, 4);
 }
 
 }  // namespace tallow::sss

@@ -29,8 +29,9 @@ class LocalExposure {
   static std::size_t bytesFor(int width, int height);
   /// The picture `picture` (linear) with its base layer's shadows lifted by the share `strength` ∈
   /// (0, 1] toward mid grey at the exposure scale `exposureScale`, into output() (allocated on the
-  /// first call and at a new size).
-  void apply(const gpu::Texture& picture, float strength, float exposureScale);
+  /// first call and at a new size). With `coverage` (the camera's), the output's alpha is its code
+  /// (common/coverage_masks.glsl); without, the picture's alpha.
+  void apply(const gpu::Texture& picture, float strength, float exposureScale, const gpu::Texture* coverage = nullptr);
   const gpu::Texture& output() const { return output_; }
   std::size_t bytes() const { return grid_[0].bytes() + grid_[1].bytes() + output_.bytes() + gain_.bytes(); }
 

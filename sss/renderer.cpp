@@ -2,17 +2,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <stdexcept>
 
-#include "gpu/readback.h"
 #include "gpu/gl_limits.h"
+#include "gpu/glsl_shared.h"
+#include "gpu/readback.h"
 #include "sss/field_objects.h"
 #include "sss/field_source.h"
 #include "sss/shadow_pass.h"
 #include "sss/surface_pass.h"
 #include "sss/memory_budget.h"
 #include "sss/pixel_jitter.h"
+
+namespace tallow::glsl {
+#include "shaders/common/coverage_masks.glsl"
+}  // namespace tallow::glsl
 
 namespace tallow::sss {
 namespace {
@@ -192,8 +198,10 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
       pass->run(context, d == Due::Changed);
       gpu::PassTiming timing;
       timing.name = pass->name();
-      timing.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      // The thread's clock is read inside the wall clock's interval: a thread cannot use more CPU
+      // time than passes, and the figures say so (FrameTimingsRenderer).
       timing.threadCpuMs = threadCpuMs() - threadStart;
+      timing.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       t.cpuTotalMs += timing.cpuMs;
       t.threadCpuTotalMs += timing.threadCpuMs;
       t.passes.push_back(std::move(timing));
@@ -230,6 +238,9 @@ bool Renderer::resolveTimings(FrameTimings& t, bool wait) const {
     t.passes[i].gpuMs = (*ms)[i];
     t.gpuTotalMs += (*ms)[i];
   }
+  // Available with the times (GpuTimer::times looked at both); none where the driver cannot count.
+  if (const auto counts = timer_.counts(t.frame, wait); counts && counts->size() == t.passes.size())
+    for (std::size_t i = 0; i < counts->size(); ++i) t.passes[i].counts = (*counts)[i];
   return true;
 }
 
@@ -267,11 +278,12 @@ gpu::Image Renderer::readShown() const {
 }
 
 gpu::Image Renderer::readRadiance() const {
-  return gpu::readColor(target_.framebuffer, 0, target_.radiance.width(), target_.radiance.height());
+  // From the texture itself (glGetTextureImage): no framebuffer binding to ask for and restore.
+  return gpu::readTexture(target_.radiance);
 }
 
 MapCoverage Renderer::mapCoverage() const {
-  const gpu::Image c = gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
+  const gpu::Image c = readCoverage();
   MapCoverage m;
   for (const glm::vec4& p : c.pixels) {
     if (p.r < 0.5f) continue;
@@ -282,26 +294,49 @@ MapCoverage Renderer::mapCoverage() const {
 }
 
 gpu::Image Renderer::readCoverage() const {
-  return gpu::readColor(target_.framebuffer, 1, target_.coverage.width(), target_.coverage.height());
+  return gpu::readTexture(target_.coverage);
 }
 
-std::vector<std::uint8_t> Renderer::receiverMask() const {
-  const gpu::Image c = readCoverage();
-  std::vector<std::uint8_t> mask(c.pixels.size());
-  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].b > 0.5f ? 1 : 0;
-  return mask;
+PixelMasks Renderer::pixelMasks() const { return pixelMasksOf(readCoverage()); }
+
+PixelMasks pixelMasksOf(const gpu::Image& c) {
+  PixelMasks m;
+  m.translucent.resize(c.pixels.size());
+  m.receivers.resize(c.pixels.size());
+  for (std::size_t i = 0; i < c.pixels.size(); ++i) {
+    m.translucent[i] = glsl::seesTranslucent(c.pixels[i]) ? 1 : 0;
+    m.receivers[i] = glsl::seesReceiver(c.pixels[i]) ? 1 : 0;
+  }
+  return m;
 }
 
-std::vector<std::uint8_t> Renderer::translucentMask() const {
-  // Translucent pixels have coverage alpha 1; where the flame is drawn in front it is halved.
-  const gpu::Image c = readCoverage();
-  std::vector<std::uint8_t> mask(c.pixels.size());
-  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = c.pixels[i].r > 0.5f && c.pixels[i].a > 0.75f ? 1 : 0;
-  return mask;
+PixelMasks pixelMasksOfCode(const gpu::Image& shown) {
+  PixelMasks m;
+  m.translucent.resize(shown.pixels.size());
+  m.receivers.resize(shown.pixels.size());
+  for (std::size_t i = 0; i < shown.pixels.size(); ++i) {
+    const int code = static_cast<int>(std::lround(shown.pixels[i].a));
+    m.translucent[i] = (code & 1) ? 1 : 0;
+    m.receivers[i] = (code & 2) ? 1 : 0;
+  }
+  return m;
 }
+
+std::vector<std::uint8_t> Renderer::receiverMask() const { return pixelMasks().receivers; }
+
+std::vector<std::uint8_t> Renderer::translucentMask() const { return pixelMasks().translucent; }
 
 std::size_t Renderer::triangleCount() const {
+  if (const std::optional<std::size_t> n = triangleCountIfAvailable()) return *n;
+  glFinish();  // wanted now (stats at the end of a run): after a finish every query has its result
+  if (const std::optional<std::size_t> n = triangleCountIfAvailable()) return *n;
   return geometry_.triangleCount() + modules_.find<FieldObjects>()->triangleCount();
+}
+
+std::optional<std::size_t> Renderer::triangleCountIfAvailable() const {
+  const std::optional<std::size_t> fields = modules_.find<FieldObjects>()->triangleCountIfAvailable();
+  if (!fields) return std::nullopt;
+  return geometry_.triangleCount() + *fields;
 }
 
 std::size_t Renderer::gpuBytes() const { return target_.bytes() + geometry_.bytes() + modules_.bytes(); }

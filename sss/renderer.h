@@ -49,6 +49,17 @@ struct FrameTimings {
   bool gpuKnown() const { return !std::isnan(gpuTotalMs); }
 };
 
+/// Per pixel of a frame (top row first): 1 where the camera sees a translucent object (and no candle
+/// flame in front of it), and 1 where it sees an opaque surface (a receiver of the VPLs' light).
+struct PixelMasks {
+  std::vector<std::uint8_t> translucent, receivers;
+};
+/// The masks of a coverage image read back (Renderer::coverage()).
+PixelMasks pixelMasksOf(const gpu::Image& coverage);
+/// The masks of the picture shown read back when it is not the radiance (the glare's or the local
+/// exposure's output, whose alpha is the coverage's code: common/coverage_masks.glsl).
+PixelMasks pixelMasksOfCode(const gpu::Image& shown);
+
 /// Checks settings and scene against the limits of the renderer and of the current GL context;
 /// throws std::invalid_argument with one line (e.g. a shadow map larger than GL_MAX_TEXTURE_SIZE).
 void checkLimits(const Scene& scene, const RenderSettings& settings);
@@ -96,6 +107,10 @@ class Renderer {
   /// Per pixel of the last frame: 1 where the camera sees a translucent object (and no candle flame
   /// in front of it). Reads the frame back.
   std::vector<std::uint8_t> translucentMask() const;
+  /// Both masks from one read-back of the coverage target.
+  PixelMasks pixelMasks() const;
+  /// The texture the picture shown is in: the radiance, or the last afterPicture pass's output.
+  const gpu::Texture& shownTexture() const { return shown(); }
   const gpu::Texture& radiance() const { return target_.radiance; }
   /// The camera target's coverage (Algorithm 1: r translucent, g seen by a map, b opaque) and depth
   /// attachments of the last frame, for the view window's debug views.
@@ -104,6 +119,8 @@ class Renderer {
   /// Meshes, primitives and the last extraction of every field object; the field count reads a
   /// transform-feedback query, which waits for the GPU (a stall): call it for stats, not per frame.
   std::size_t triangleCount() const;
+  /// triangleCount without a wait (the window's panel): nullopt while an extraction is on the GPU.
+  std::optional<std::size_t> triangleCountIfAvailable() const;
   std::size_t gpuBytes() const;  ///< render targets, shadow maps, meshes, field extraction buffers, maps
   /// A method's GPU state (sss::RadiosityMaps, whose light G-buffers serve no-cache too;
   /// ImageSpaceSss, VirtualPointLights, Sslpv, …), once a frame has used it; null before. The

@@ -124,7 +124,7 @@ app::FrameRecord frame(int index, double wallMs, double gpuMs) {
   f.index = index;
   f.timeS = index / 30.0;
   f.wallMs = wallMs;
-  f.gpu.passes.push_back({"sss.maps", gpuMs, 2.0 * gpuMs, 3.0 * gpuMs});
+  f.gpu.passes.push_back({"sss.maps", gpuMs, 2.0 * gpuMs, 3.0 * gpuMs, std::nullopt});
   f.gpu.gpuTotalMs = gpuMs;
   f.gpu.cpuTotalMs = 2.0 * gpuMs;
   f.gpu.threadCpuTotalMs = 3.0 * gpuMs;

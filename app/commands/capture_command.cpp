@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "app/commands/frame_stats.h"
+#include "app/commands/frame_writer.h"
 #include "app/commands/interrupt.h"
 #include "app/commands/progress.h"
 #include "app/commands/reference_command.h"
@@ -23,6 +24,7 @@
 #include "gpu/atomic_file.h"
 #include "gpu/image_error.h"
 #include "gpu/image_io.h"
+#include "gpu/readback.h"
 #include "sss/field_source.h"
 #include "sss/maps/radiosity_maps.h"
 #include "sss/peers/sslpv.h"
@@ -31,6 +33,23 @@
 namespace tallow::app {
 
 namespace {
+/// A frame whose passes were issued and whose targets are on their way back (AsyncReadback).
+struct InFlight {
+  FrameRecord frame;
+  std::uint64_t ticket = 0;  ///< AsyncReadback: frameTargets' two
+  bool shownSeparate = false;
+  gpu::ToneMapSettings toneMap;
+  std::chrono::steady_clock::time_point start;
+  std::uint64_t targetReads = 0;  ///< render targets read back for it
+};
+
+/// What a capture reads back of the last frame, two targets: the radiance (the EXR), then the
+/// picture shown when it is not the radiance (the PNG: the glare, the local exposure; the masks in
+/// its alpha), else the coverage (the masks).
+std::vector<const gpu::Texture*> frameTargets(const sss::Renderer& renderer) {
+  return {&renderer.radiance(), renderer.showsRadiance() ? &renderer.coverage() : &renderer.shownTexture()};
+}
+
 /// Sums `more` into `total` pass by pass (passes absent from `total` are appended).
 void addTimings(sss::FrameTimings& total, const sss::FrameTimings& more) {
   for (const gpu::PassTiming& p : more.passes) {
@@ -41,10 +60,14 @@ void addTimings(sss::FrameTimings& total, const sss::FrameTimings& more) {
     } else {
       it->gpuMs += p.gpuMs;
       it->cpuMs += p.cpuMs;
+      it->threadCpuMs += p.threadCpuMs;
+      if (it->counts && p.counts) *it->counts += *p.counts;
+      else it->counts.reset();  // a render not counted: no sum to show
     }
   }
   total.gpuTotalMs += more.gpuTotalMs;
   total.cpuTotalMs += more.cpuTotalMs;
+  total.threadCpuTotalMs += more.threadCpuTotalMs;
 }
 
 /// What a capture writes into its folder, which a rerun clears (OutputFolder::clearEarlierRun).
@@ -217,6 +240,84 @@ int runCapture(const CaptureOptions& options) {
   // a capture past the animation's end shows the time it asks for).
   Playback playback(options.timeS.value_or(config.scene.startS), config.scene.durationS, config.scene.loop);
   nlohmann::json parameters = run.parameters;
+  // Issue 39, point 4: no frame waits for its own pixels. Frame k's targets are copied into a ring
+  // of pixel-pack buffers; they are fetched after frame k+1's passes were issued (the GPU has long
+  // finished k by then) and handed to the writer's thread, which computes the frame's figures and
+  // writes its files while frame k+1 renders. The writer is declared last, so that it is joined
+  // before anything its jobs use goes.
+  gpu::AsyncReadback readback;
+  std::optional<InFlight> inFlight;
+  // On the writer's thread, one frame after the other: what the render thread no longer touches
+  // (the frame before, the video, the stats, the folder, the progress line).
+  const auto writeFrame = [&](FrameRecord& frame, std::vector<gpu::Image>& images, bool shownSeparate,
+                              const gpu::ToneMapSettings& toneMap) {
+    const int i = frame.index;
+    gpu::Image& image = images[0];
+    const gpu::PixelCensus census = gpu::censusPixels(image);
+    frame.pixels = pixelsRecord(census, options.exrFloat);
+    // The masks, read back once: the clipped count and both frame-to-frame changes use them.
+    const sss::PixelMasks masks = shownSeparate ? sss::pixelMasksOfCode(images[1]) : sss::pixelMasksOf(images[1]);
+    frame.pixels.update(clippedRecord(image, masks.translucent, toneMap));
+    if (census.nonFinite > 0)
+      std::fprintf(stderr,
+                   "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
+                   i, census.nonFinite);
+    // A script that resizes the image starts the frame-to-frame change afresh (null at the resize).
+    if (previous && (previous->width != image.width || previous->height != image.height)) previous.reset();
+    if (previous) {
+      // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame;
+      // and of the translucent objects themselves (issue 17, point 3).
+      const auto any = [](const std::vector<std::uint8_t>& mask) {
+        return std::any_of(mask.begin(), mask.end(), [](std::uint8_t m) { return m != 0; });
+      };
+      if (any(masks.receivers)) frame.receiverChange = gpu::relativeChange(image, *previous, masks.receivers);
+      if (any(masks.translucent)) frame.translucentChange = gpu::relativeChange(image, *previous, masks.translucent);
+    }
+    if (reference) {
+      frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);
+      if (frame.reference["rel_rmse"].is_null() && frame.reference["non_finite"]["image"].get<std::size_t>() > 0) {
+        ++undefinedErrors;
+        std::fprintf(stderr, "tallow: frame %d: its error against %s is undefined (NaN or infinite pixels)\n", i,
+                     options.reference.c_str());
+      }
+    }
+
+    // The earlier run's outputs go when this one has its first frame to write (docs/commands.md).
+    if (i == 0) folder.clearEarlierRun(kCaptureOutputs);
+    // The PNG and the video show the picture as the window does (render.bloom's glare and
+    // render.local_exposure's adaptation included); the EXR keeps the radiance.
+    const gpu::Image& picture = shownSeparate ? images[1] : image;
+    gpu::writePng(out / frameName(i, "png"), picture, toneMap);
+    const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
+    if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
+                      {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}}) != asked)
+      std::fprintf(stderr,
+                   "tallow: %s: %s pixel(s) beyond half-float's range (%g): written with 32-bit float channels\n",
+                   (out / frameName(i, "exr")).string().c_str(), frame.pixels["beyond_half"].dump().c_str(),
+                   double(gpu::kHalfMax));
+    if (!options.video.empty()) {
+      if (!video) video = std::make_unique<VideoEncoder>(options.video, image.width, image.height, options.fps);
+      video->add(gpu::toneMappedRgb8(picture, toneMap));
+    }
+    frame.rssBytes = residentBytes();
+    previous = std::move(image);
+    if (i + 1 == options.frames) run.state = "complete";
+    stats.append(run, frame);
+    progress.update(i + 1);
+  };
+  FrameWriter writer;
+  const auto complete = [&](InFlight& f, std::chrono::steady_clock::time_point end) {
+    std::vector<gpu::Image> images = readback.fetch(f.ticket);
+    renderer.resolveTimings(f.frame.gpu);  // its queries were issued before the fence it passed
+    // The time from this frame's start to the next one's: the rate frames are made at, rendering
+    // overlapping the writing of the frame before.
+    f.frame.wallMs = std::chrono::duration<double, std::milli>(end - f.start).count();
+    f.frame.targetReads = static_cast<std::int64_t>(f.targetReads);
+    writer.submit([&, frame = std::move(f.frame), images = std::move(images), separate = f.shownSeparate,
+                   toneMap = f.toneMap]() mutable {
+      writeFrame(frame, images, separate, toneMap);
+    });
+  };
   try {
     for (int i = 0; i < options.frames && !interrupted(); ++i) {
       FrameRecord frame;
@@ -263,65 +364,18 @@ int runCapture(const CaptureOptions& options) {
           frame.pointLights.push_back(l.position);
           frame.pointLightIntensities.push_back(l.intensity);
         }
-      glFinish();
-      renderer.resolveTimings(frame.gpu);  // the GPU is done: no wait
-      frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      gpu::Image image = renderer.readRadiance();
-      const gpu::PixelCensus census = gpu::censusPixels(image);
-      frame.pixels = pixelsRecord(census, options.exrFloat);
-      // Read back once: the clipped count and the translucent pixels' frame-to-frame change use it.
-      const std::vector<std::uint8_t> translucent = renderer.translucentMask();
-      frame.pixels.update(clippedRecord(image, translucent, config.render.toneMap));
-      if (census.nonFinite > 0)
-        std::fprintf(stderr,
-                     "tallow: warning: frame %d: %zu pixel(s) are NaN or infinite (kept so in the EXR, black in the PNG)\n",
-                     i, census.nonFinite);
-      // A script that resizes the image starts the frame-to-frame change afresh (null at the resize).
-      if (previous && (previous->width != image.width || previous->height != image.height)) previous.reset();
-      if (previous) {
-        // Flicker of what the receivers show (issue 7, point 4): the VPLs' light from frame to frame;
-        // and of the translucent objects themselves (issue 17, point 3).
-        const auto any = [](const std::vector<std::uint8_t>& mask) {
-          return std::any_of(mask.begin(), mask.end(), [](std::uint8_t m) { return m != 0; });
-        };
-        const std::vector<std::uint8_t> receivers = renderer.receiverMask();
-        if (any(receivers)) frame.receiverChange = gpu::relativeChange(image, *previous, receivers);
-        if (any(translucent)) frame.translucentChange = gpu::relativeChange(image, *previous, translucent);
-      }
-      if (reference) {
-        frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);
-        if (frame.reference["rel_rmse"].is_null() && frame.reference["non_finite"]["image"].get<std::size_t>() > 0) {
-          ++undefinedErrors;
-          std::fprintf(stderr, "tallow: frame %d: its error against %s is undefined (NaN or infinite pixels)\n", i,
-                       options.reference.c_str());
-        }
-      }
-
-      // The earlier run's outputs go when this one has its first frame to write (docs/commands.md).
-      if (i == 0) folder.clearEarlierRun(kCaptureOutputs);
-      // The PNG and the video show the picture as the window does (render.bloom's glare and
-      // render.local_exposure's adaptation included); the EXR keeps the radiance.
-      const std::optional<gpu::Image> shown =
-          renderer.showsRadiance() ? std::nullopt : std::optional<gpu::Image>(renderer.readShown());
-      const gpu::Image& picture = shown ? *shown : image;
-      gpu::writePng(out / frameName(i, "png"), picture, config.render.toneMap);
-      const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
-      if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
-                        {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}}) != asked)
-        std::fprintf(stderr,
-                     "tallow: %s: %s pixel(s) beyond half-float's range (%g): written with 32-bit float channels\n",
-                     (out / frameName(i, "exr")).string().c_str(), frame.pixels["beyond_half"].dump().c_str(),
-                     double(gpu::kHalfMax));
-      if (!options.video.empty()) {
-        if (!video) video = std::make_unique<VideoEncoder>(options.video, image.width, image.height, options.fps);
-        video->add(gpu::toneMappedRgb8(picture, config.render.toneMap));
-      }
-      frame.rssBytes = residentBytes();
-      previous = std::move(image);
-      if (i + 1 == options.frames) run.state = "complete";
-      stats.append(run, frame);
-      progress.update(i + 1);
+      // The frame's targets go into the read-back ring behind a fence; the frame before comes back
+      // now, while the GPU works on this one, and is written on the writer's thread.
+      const std::uint64_t readsBefore = gpu::targetReads();
+      InFlight next{std::move(frame), readback.issue(frameTargets(renderer)), !renderer.showsRadiance(),
+                    config.render.toneMap, start, 0};
+      next.targetReads = gpu::targetReads() - readsBefore;
+      if (inFlight) complete(*inFlight, next.start);
+      inFlight = std::move(next);
     }
+    if (inFlight) complete(*inFlight, std::chrono::steady_clock::now());
+    inFlight.reset();
+    writer.finish();
     progress.finish();
     if (interrupted()) {
       run.state = "interrupted";
@@ -329,7 +383,14 @@ int runCapture(const CaptureOptions& options) {
     }
     if (video) video->finish();
   } catch (const std::exception& e) {
-    // What was written stays (each file whole); stats.json says where and why the run stopped.
+    // What was written stays (each file whole); stats.json says where and why the run stopped. The
+    // frame before the one that failed was rendered whole: it is written too.
+    if (inFlight) try {
+        complete(*inFlight, std::chrono::steady_clock::now());
+      } catch (const std::exception&) {
+        // The error that stopped the run is the one to report.
+      }
+    writer.settle();
     progress.finish();
     video.reset();  // no partial video
     if (run.framesWritten > 0) {

@@ -108,11 +108,15 @@ nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& r
 
 nlohmann::json frameJson(const FrameRecord& f) {
   using nlohmann::json;
-  json passes = json::object(), cpu = json::object(), thread = json::object();
+  json passes = json::object(), cpu = json::object(), thread = json::object(), invocations = json::object();
   for (const auto& p : f.gpu.passes) {
     passes[p.name] = finiteOrNull(p.gpuMs);  // a GPU time not read (NaN) is null
     cpu[p.name] = p.cpuMs;
     thread[p.name] = p.threadCpuMs;
+    if (p.counts)  // GL_ARB_pipeline_statistics_query; a pass that ran twice in a frame: the last
+      invocations[p.name] = {{"vertex", p.counts->vertex}, {"geometry", p.counts->geometry},
+                             {"primitives", p.counts->primitives}, {"fragment", p.counts->fragment},
+                             {"compute", p.counts->compute}};
   }
   json lights = json::array(), intensities = json::array();
   for (const glm::vec3& p : f.pointLights) lights.push_back({p.x, p.y, p.z});
@@ -121,6 +125,8 @@ nlohmann::json frameJson(const FrameRecord& f) {
                 {"gpu_ms", passes}, {"gpu_total_ms", finiteOrNull(f.gpu.gpuTotalMs)},
                 {"cpu_ms", cpu}, {"cpu_total_ms", f.gpu.cpuTotalMs},
                 {"thread_cpu_ms", thread}, {"thread_cpu_total_ms", f.gpu.threadCpuTotalMs},
+                {"invocations", invocations},
+                {"target_reads", f.targetReads >= 0 ? nlohmann::json(f.targetReads) : nlohmann::json(nullptr)},
                 {"receiver_change", finiteOrNull(f.receiverChange)},
                 {"translucent_change", finiteOrNull(f.translucentChange)},
                 {"reference_error", f.reference},
@@ -143,6 +149,12 @@ nlohmann::json medians(std::map<std::string, std::vector<double>>& series) {
 }
 }  // namespace
 
+nlohmann::json FrameSummary::invocationMedians() {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto& [pass, counters] : invocations_) out[pass] = medians(counters);
+  return out;
+}
+
 void FrameSummary::add(const nlohmann::json& frame) {
   ++frames_;
   const auto number = [](const nlohmann::json& v, std::vector<double>& into) {
@@ -160,6 +172,9 @@ void FrameSummary::add(const nlohmann::json& frame) {
   perPass("gpu_ms", perPass_);
   perPass("cpu_ms", perPassCpu_);
   perPass("thread_cpu_ms", perPassThread_);
+  if (const auto it = frame.find("invocations"); it != frame.end() && it->is_object())
+    for (const auto& [pass, counters] : it->items())
+      for (const auto& [counter, value] : counters.items()) number(value, invocations_[pass][counter]);
 }
 
 nlohmann::json FrameSummary::json() {
@@ -172,6 +187,7 @@ nlohmann::json FrameSummary::json() {
           {"cpu_ms_median", medians(perPassCpu_)},
           {"thread_cpu_total_ms_median", median(threadTotal_)},
           {"thread_cpu_ms_median", medians(perPassThread_)},
+          {"invocations_median", invocationMedians()},
           {"receiver_change_mean",
            changes_.empty() ? json(nullptr)
                             : json(std::accumulate(changes_.begin(), changes_.end(), 0.0) / double(changes_.size()))}};

@@ -20,7 +20,9 @@ namespace tallow::app {
 struct FrameRecord {
   int index = 0;
   double timeS = 0.0;
-  double wallMs = 0.0;  ///< CPU wall time from the start of the frame to glFinish
+  /// CPU wall time of the frame: capture, from its start to the next frame's (rendering overlaps
+  /// the writing of the frame before); the window, the render call's.
+  double wallMs = 0.0;
   sss::FrameTimings gpu;
   /// gpu::relativeChange of the receivers' radiance against the frame before (NaN: first frame).
   double receiverChange = std::numeric_limits<double>::quiet_NaN();
@@ -40,6 +42,8 @@ struct FrameRecord {
   nlohmann::json view;
   /// What the image files cannot hold as it is (pixelsRecord; null when not counted).
   nlohmann::json pixels;
+  /// Render targets read back for the frame (gpu::targetReads; −1: not counted).
+  std::int64_t targetReads = -1;
 };
 
 /// The process's resident set now, in bytes (/proc/self/statm; 0 where it cannot be read).
@@ -114,6 +118,9 @@ class FrameSummary {
   std::size_t frames_ = 0;
   std::vector<double> wall_, gpuTotal_, cpuTotal_, threadTotal_, changes_;
   std::map<std::string, std::vector<double>> perPass_, perPassCpu_, perPassThread_;
+  /// Per pass, per pipeline counter (vertex, geometry, primitives, fragment, compute): each frame's count.
+  std::map<std::string, std::map<std::string, std::vector<double>>> invocations_;
+  nlohmann::json invocationMedians();
 };
 
 }  // namespace tallow::app

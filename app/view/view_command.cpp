@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <optional>
 #include <tuple>
 
@@ -154,6 +155,7 @@ int runView(const ViewOptions& options) {
   bool panelVisible = !options.hidePanel;
   gpu::ContextOptions contextOptions;
   contextOptions.backend = gpu::GlBackend::Glfw;
+  contextOptions.swapInterval = options.vsync ? 1 : 0;
   std::tie(contextOptions.windowWidth, contextOptions.windowHeight) = windowSizeFor(inputs.width, inputs.height, panelVisible);
   contextOptions.title = "Tallow — " + (options.scene.preset.empty() ? defaultPresetName() : options.scene.preset);
   auto context = gpu::GlContext::create(contextOptions);
@@ -189,6 +191,15 @@ int runView(const ViewOptions& options) {
   // --stats: each frame's record appended as it is done (memory flat however long the window is open).
   std::optional<StatsWriter> stats;
   if (!options.stats.empty()) stats.emplace(options.stats);
+  std::deque<FrameRecord> pendingStats;
+  const auto flushStats = [&](bool all) {
+    while (!pendingStats.empty()) {
+      const bool mustWait = all || pendingStats.size() + 1 >= gpu::GpuTimer::kRing;
+      if (!session.renderer().resolveTimings(pendingStats.front().gpu, mustWait) && !mustWait) break;
+      stats->append(run, pendingStats.front());
+      pendingStats.pop_front();
+    }
+  };
 
   auto last = Clock::now();
   auto lastTriangles = last - std::chrono::hours(1);
@@ -314,10 +325,13 @@ int runView(const ViewOptions& options) {
     // intermediate values are one step in the making.
     const ImGuiIO& io = ImGui::GetIO();
     if (!ImGui::IsAnyItemActive() && !io.MouseDown[0] && !io.MouseDown[1] && !io.MouseDown[2]) session.commitEdits();
-    if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS)) {
-      feedback.triangles = session.renderer().triangleCount();
-      lastTriangles = now;
-    }
+    // Sampled a few times a second, and only once the GPU has the count: reading the transform-
+    // feedback query right after the frame that issued it would wait for that frame's extraction.
+    if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS))
+      if (const std::optional<std::size_t> n = session.renderer().triangleCountIfAvailable()) {
+        feedback.triangles = *n;
+        lastTriangles = now;
+      }
 
     if (options.frames > 0 && frame == options.frames - 1) {
       for (const std::string& s : options.screenshots) requests.screenshots.push_back(s);
@@ -358,8 +372,6 @@ int runView(const ViewOptions& options) {
       record.timeS = feedback.frame.timeS;
       record.wallMs = feedback.frame.wallMs;
       record.gpu = feedback.frame.gpu;
-      // --stats measures: this frame's GPU times are read now, a wait the window otherwise avoids.
-      session.renderer().resolveTimings(record.gpu);
       nlohmann::json now = session.registry().snapshot(session.config());
       record.changed = changedParameters(parameters, now);
       parameters = std::move(now);
@@ -371,12 +383,16 @@ int runView(const ViewOptions& options) {
       record.view["panel_visible"] = panelVisible;
       record.view["can_undo"] = session.history().canUndo();
       record.view["can_redo"] = session.history().canRedo();
-      stats->append(run, record);
+      // Written once the GPU has the frame's times (a frame or two later), so that the window never
+      // waits on a query; only a GPU as far behind as the timer's ring keeps frames makes it wait.
+      pendingStats.push_back(std::move(record));
+      flushStats(false);
     }
     glfwSwapBuffers(window);
   }
 
   if (!options.stats.empty()) {
+    flushStats(true);
     run.presetName = session.presetName();
     run.presetPath = session.presetPath().string();
     run.width = session.config().render.width;

@@ -26,6 +26,7 @@ struct ViewOptions {
   std::optional<double> timeS;  ///< animation time of the first frame (default: the preset's start_s)
   bool paused = false;     ///< start with the animation paused
   bool hidePanel = false;  ///< no ImGui panel (screenshots of the image alone)
+  bool vsync = true;       ///< swap at the display's refresh (false: no wait in glfwSwapBuffers)
 };
 
 int runView(const ViewOptions& options);

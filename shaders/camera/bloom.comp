@@ -11,6 +11,7 @@
 //           Greenberg 1995, §3) cut at 2^uLevels pixels. Each level keeps B's mean, so
 //           L' = L + s (glare − B) keeps the total flux: a share s of the bright light is spread,
 //           not added, and light below white is untouched.
+#include "common/coverage_masks.glsl"
 layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(rgba32f, binding = 0) uniform writeonly image2D uOutput;     // step 1: the picture shown
@@ -21,6 +22,8 @@ uniform int uStep;
 uniform int uLevels;          // glare levels, 1 … uLevels
 uniform float uShare;         // s
 uniform float uExposureScale; // e = 2^render.exposure_ev
+uniform sampler2D uCoverage;  // the camera's coverage: its code becomes the output's alpha
+uniform int uCoverageAlpha;   // 0: the output keeps the picture's alpha (no coverage bound)
 
 vec3 brightPart(vec3 c) {
   float y = dot(c, vec3(0.2126, 0.7152, 0.0722)) * uExposureScale;
@@ -59,5 +62,6 @@ void main() {
   for (int i = 1; i <= uLevels; ++i) glare += bsplineLevel(uv, i);
   glare /= float(max(uLevels, 1));
   vec3 bright = texelFetch(uBright, p, 0).rgb;
-  imageStore(uOutput, p, vec4(picture.rgb + uShare * (glare - bright), picture.a));
+  float alpha = uCoverageAlpha != 0 ? coverageCode(texelFetch(uCoverage, p, 0)) : picture.a;
+  imageStore(uOutput, p, vec4(picture.rgb + uShare * (glare - bright), alpha));
 }

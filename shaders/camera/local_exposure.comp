@@ -25,6 +25,7 @@
 // its own square holds, so the pure sides are its neighbours) and g their gains, α from Y. A pixel
 // that is the darkest or brightest of its 3 × 3 keeps its own gain (uniform regions, detail,
 // a sharp edge's two sides).
+#include "common/coverage_masks.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(rg32f, binding = 0) uniform writeonly image3D uGridOut;   // steps 0-3
@@ -37,6 +38,8 @@ uniform int uStep;
 uniform int uCell;            // S, pixels per grid cell along x and y
 uniform float uExposureScale; // e = 2^render.exposure_ev: luminance as the tone map sees it
 uniform float uStrength;      // s = render.local_exposure
+uniform sampler2D uCoverage;  // step 5: the camera's coverage, whose code becomes the output's alpha
+uniform int uCoverageAlpha;   // 0: the output keeps the picture's alpha (no coverage bound)
 
 const int kBins = 22;             // range bins of the grid
 const float kBinStops = 4.0 / 3.0;  // σ_r: 0.4 decades = 1.33 stops per bin (Durand and Dorsey §5.2)
@@ -122,7 +125,8 @@ void blendConsistently() {
     float alpha = (y - lo) / (hi - lo);
     gain = (alpha * hi * gainHi + (1.0 - alpha) * lo * gainLo) / y;
   }
-  imageStore(uOutput, p, vec4(picture.rgb * gain, picture.a));
+  float a = uCoverageAlpha != 0 ? coverageCode(texelFetch(uCoverage, p, 0)) : picture.a;
+  imageStore(uOutput, p, vec4(picture.rgb * gain, a));
 }
 
 void main() {

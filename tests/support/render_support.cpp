@@ -36,6 +36,7 @@ PresetSession::PresetSession(const std::string& preset, const std::vector<std::s
 }
 
 gpu::Image PresetSession::render(double timeS, sss::FrameTimings* timings) {
+  context_->makeCurrent();  // a test may hold several sessions: GL names are per context
   sss::FrameTimings t = renderer_->render(scene(), settings(), timeS);
   gpu::Image image = renderer_->readRadiance();
   if (timings) {
@@ -45,7 +46,10 @@ gpu::Image PresetSession::render(double timeS, sss::FrameTimings* timings) {
   return image;
 }
 
-sss::FrameTimings PresetSession::renderFrame(double timeS) { return renderer_->render(scene(), settings(), timeS); }
+sss::FrameTimings PresetSession::renderFrame(double timeS) {
+  context_->makeCurrent();
+  return renderer_->render(scene(), settings(), timeS);
+}
 
 std::string testScene(const std::string& name) {
   return std::string(TALLOW_TEST_SOURCE_DIR) + "/tests/data/" + name + ".json";

@@ -32,8 +32,16 @@ class PresetSession {
   const sss::Scene& scene() const { return loaded_.config.scene; }
   sss::RenderSettings& settings() { return loaded_.config.render; }
   const sss::RenderSettings& settings() const { return loaded_.config.render; }
-  sss::Renderer& renderer() { return *renderer_; }
-  const sss::Renderer& renderer() const { return *renderer_; }
+  /// The renderer, its context made current (a test may hold several sessions; GL names are per
+  /// context, and a session used in another's context reads that one's objects).
+  sss::Renderer& renderer() {
+    context_->makeCurrent();
+    return *renderer_;
+  }
+  const sss::Renderer& renderer() const {
+    context_->makeCurrent();
+    return *renderer_;
+  }
   /// The library the renderer's programs come from, for a test's own GPU passes in this context.
   const gpu::ShaderLibrary& shaders() const { return shaders_; }
   /// Renders the frame at time t; returns its linear radiance.
