@@ -97,8 +97,8 @@ std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history)
   const std::size_t gbuffer = layers2D(kGBufferPositionFormat, size, k) + layers2D(gBufferNormalFormat(), size, k);
   if (computeGather || history) bytes += gbuffer;
   // and, on a reuse, the kept history and this frame's mean beside it, both mipmapped (the latter
-  // also holds what a still after motion fades out).
-  if (history) bytes += gbuffer + 2 * layers2D(GL_RGBA32F, size, k, levels);
+  // also holds what a still after motion fades out), and the list of texels the history visits.
+  if (history) bytes += gbuffer + 2 * layers2D(GL_RGBA32F, size, k, levels) + coveredTexelBytes(size, k);
   return bytes;
 }
 

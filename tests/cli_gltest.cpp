@@ -49,12 +49,23 @@ TEST(Cli, CaptureOfABunnyWritesPngExrAndStats) {
   const auto stats = nlohmann::json::parse(in);
   EXPECT_FALSE(stats["gl"]["GL_RENDERER"].get<std::string>().empty());
   EXPECT_FALSE(stats["gl"]["GL_VERSION"].get<std::string>().empty());
+  // The limits that pick a pass's path (issue 39): GL 4.5 guarantees at least 256 geometry-shader
+  // output vertices and 4 transform-feedback buffers.
+  EXPECT_GE(stats["gl"]["limits"]["GL_MAX_GEOMETRY_OUTPUT_VERTICES"].get<int>(), 256);
+  EXPECT_GE(stats["gl"]["limits"]["GL_MAX_TRANSFORM_FEEDBACK_BUFFERS"].get<int>(), 4);
+  EXPECT_TRUE(stats["gl"]["limits"]["GL_ARB_shader_viewport_layer_array"].is_boolean());
   EXPECT_EQ(stats["resolution"], nlohmann::json({320, 180}));
   EXPECT_EQ(stats["triangles"].get<long>(), 69451 + 2);  // the bunny and the ground's two triangles
   ASSERT_EQ(stats["frames"].size(), 1u);
   EXPECT_GT(stats["frames"][0]["wall_ms"].get<double>(), 0.0);
   EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("surface"));
   EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("shadow.directional"));
+  if (stats["gl"]["limits"]["GL_ARB_pipeline_statistics_query"].get<bool>()) {
+    // The camera pass shades each of the 320x180 pixels at least once (the floor covers the view).
+    const auto& surface = stats["frames"][0]["invocations"]["surface"];
+    EXPECT_GE(surface["fragment"].get<long>(), 320L * 180L);
+    EXPECT_GT(surface["vertex"].get<long>(), 69451L);  // the bunny's vertices, at least once each
+  }
   EXPECT_FALSE(stats["frames"][0]["gpu_ms"].contains("shadow.point")) << "no point light: no cube shadow pass";
   // Every registry parameter is recorded, with the values in force.
   const auto materials = sss::MaterialTable::load(std::filesystem::path(TALLOW_TEST_DATA_DIR) / "materials.csv");

@@ -11,6 +11,7 @@
 #include "app/commands/frame_writer.h"
 #include "app/commands/interrupt.h"
 #include "app/commands/progress.h"
+#include "app/commands/provenance.h"
 #include "app/commands/reference_command.h"
 #include "app/commands/option_checks.h"
 #include "app/commands/output_folder.h"
@@ -218,6 +219,7 @@ int runCapture(const CaptureOptions& options) {
   run.presetPath = loaded.presetPath.string();
   run.backend = context->backend();
   run.gl = context->info();
+  run.glLimits = glLimitsJson();
   run.width = config.render.width;
   run.height = config.render.height;
   run.plan = sss::Renderer::plan(config.scene, config.render);

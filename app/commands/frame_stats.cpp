@@ -198,7 +198,8 @@ nlohmann::json runJson(const RunRecord& run) {
   json plan = json::array();
   for (const auto& p : run.plan)
     plan.push_back({{"name", p.name}, {"reason", p.reason}, {"reads", p.io.reads}, {"writes", p.io.writes}});
-  const json gl = glJson(run.backend, run.gl);
+  json gl = glJson(run.backend, run.gl);
+  if (!run.glLimits.is_null()) gl["limits"] = run.glLimits;
   json provenance = provenanceJson();
   provenance["gl"] = gl;
   json state = {{"state", run.state}, {"frames_requested", run.framesRequested}, {"frames_written", run.framesWritten}};

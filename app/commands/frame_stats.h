@@ -83,6 +83,7 @@ struct RunRecord {
   std::string presetName, presetPath;
   gpu::GlBackend backend = gpu::GlBackend::OsMesa;
   gpu::GlInfo gl;
+  nlohmann::json glLimits;  ///< glLimitsJson() of the run's context (null: not recorded)
   int width = 0, height = 0;
   std::size_t triangles = 0;
   std::size_t gpuBytes = 0;

@@ -93,18 +93,22 @@ nlohmann::json glJson(gpu::GlBackend backend, const gpu::GlInfo& info) {
           {"GL_SHADING_LANGUAGE_VERSION", info.glsl}};
 }
 
-nlohmann::json glJson(const gpu::GlContext& context) {
-  nlohmann::json out = glJson(context.backend(), context.info());
+nlohmann::json glLimitsJson() {
   // What decides which path a pass takes on this driver (issue 39): dual contouring's geometry
   // shader emits up to 54 vertices, the layered passes write gl_Layer from the vertex shader where
   // the extension is offered, and per-pass invocation counts need the statistics queries.
   const gpu::GlLimits& l = gpu::glLimits();
-  out["limits"] = {{"GL_MAX_GEOMETRY_OUTPUT_VERTICES", l.maxGeometryOutputVertices},
-                   {"GL_MAX_TRANSFORM_FEEDBACK_BUFFERS", l.maxTransformFeedbackBuffers},
-                   {"GL_MAX_TEXTURE_SIZE", l.maxTextureSize},
-                   {"GL_MAX_ARRAY_TEXTURE_LAYERS", l.maxArrayTextureLayers},
-                   {"GL_ARB_shader_viewport_layer_array", l.layerInVertexShader},
-                   {"GL_ARB_pipeline_statistics_query", l.pipelineStatistics}};
+  return {{"GL_MAX_GEOMETRY_OUTPUT_VERTICES", l.maxGeometryOutputVertices},
+          {"GL_MAX_TRANSFORM_FEEDBACK_BUFFERS", l.maxTransformFeedbackBuffers},
+          {"GL_MAX_TEXTURE_SIZE", l.maxTextureSize},
+          {"GL_MAX_ARRAY_TEXTURE_LAYERS", l.maxArrayTextureLayers},
+          {"GL_ARB_shader_viewport_layer_array", l.layerInVertexShader},
+          {"GL_ARB_pipeline_statistics_query", l.pipelineStatistics}};
+}
+
+nlohmann::json glJson(const gpu::GlContext& context) {
+  nlohmann::json out = glJson(context.backend(), context.info());
+  out["limits"] = glLimitsJson();
   return out;
 }
 

@@ -30,6 +30,10 @@ nlohmann::json provenanceJson();
 /// The GL context an output was measured with: {"backend", "GL_VENDOR", "GL_RENDERER", "GL_VERSION",
 /// "GL_SHADING_LANGUAGE_VERSION"} (stats.json, bench.json and the probes' reports).
 nlohmann::json glJson(gpu::GlBackend backend, const gpu::GlInfo& info);
+/// glJson of the context, with "limits": glLimitsJson().
 nlohmann::json glJson(const gpu::GlContext& context);
+/// The current context's limits that pick a pass's path (gpu::glLimits): the largest geometry-shader
+/// output, transform-feedback buffers, texture sizes, the viewport-layer and statistics extensions.
+nlohmann::json glLimitsJson();
 
 }  // namespace tallow::app

@@ -14,6 +14,7 @@
 #include "app/commands/capture_command.h"
 #include "app/commands/frame_stats.h"
 #include "app/commands/interrupt.h"
+#include "app/commands/provenance.h"
 #include "app/commands/stats_writer.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
@@ -183,6 +184,7 @@ int runView(const ViewOptions& options) {
   run.command = "view";
   run.backend = context->backend();
   run.gl = context->info();
+  run.glLimits = glLimitsJson();
   run.plan = sss::Renderer::plan(session.config().scene, session.config().render);
   run.parameters = session.registry().snapshot(session.config());
   run.framesRequested = options.frames;

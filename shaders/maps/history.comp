@@ -5,6 +5,7 @@
 // its frames (rgb: mean of B, a: frames kept; 0 where reset), and the maps are emptied for this
 // frame's estimate alone; maps/history_merge.comp adds the two back together (rescaled with
 // sss.history_rescale). Texels with no surface now are reset, so no stale sum reaches the mipmaps.
+#include "maps/covered_texels.glsl"
 #include "maps/history.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,8 +21,8 @@ layout(rgba32f, binding = 0) uniform image2DArray uMaps;
 layout(rgba32f, binding = 1) writeonly uniform image2DArray uHistory;
 
 void main() {
-  ivec3 id = ivec3(gl_GlobalInvocationID);
-  if (any(greaterThanEqual(id, imageSize(uMaps)))) return;
+  ivec3 id = historyTexel(imageSize(uMaps));
+  if (id.x < 0 || any(greaterThanEqual(id, imageSize(uMaps)))) return;
   vec4 m = imageLoad(uMaps, id);
   vec4 o = texelFetch(uOldPosition, id, 0);
   vec4 n = texelFetch(uNewPosition, id, 0);

@@ -7,6 +7,7 @@
 //            history, 0 elsewhere, so that its mipmaps and uHistory's average the same texels.
 //   uStage 1: uMaps = history mean · ratio · frames kept + this frame's sum, the ratio from
 //            sssHistoryRescale (maps/history.glsl) on both at mip level uLevel (1 without rescale).
+#include "maps/covered_texels.glsl"
 #include "maps/history.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -22,9 +23,9 @@ layout(rgba32f, binding = 1) readonly uniform image2DArray uHistory;
 layout(rgba32f, binding = 2) writeonly uniform image2DArray uFresh;
 
 void main() {
-  ivec3 id = ivec3(gl_GlobalInvocationID);
   ivec3 size = imageSize(uMaps);
-  if (any(greaterThanEqual(id, size))) return;
+  ivec3 id = historyTexel(size);
+  if (id.x < 0 || any(greaterThanEqual(id, size))) return;
   vec4 fresh = imageLoad(uMaps, id);
   vec4 history = imageLoad(uHistory, id);
   bool both = history.a > 0.0 && fresh.a > 0.0;

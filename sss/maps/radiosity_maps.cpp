@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -23,6 +24,9 @@ namespace tallow::sss {
 namespace {
 
 constexpr GLuint kLayerViewsBinding = 4;  // maps/layered.vert or .geom (layered_program.h)
+constexpr GLuint kCoveredTexelsBinding = 10;  // maps/covered_texels.glsl
+std::atomic<bool> compactedHistoryAllowed{true};
+
 
 const glm::mat4 kToTexture =
     glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
@@ -166,6 +170,7 @@ RadiosityMaps::RadiosityMaps(const gpu::ShaderLibrary& shaders)
       historyCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/history.comp"}}}),
       historyMerge_(shaders, {{{GL_COMPUTE_SHADER, "maps/history_merge.comp"}}}),
       historyFade_(shaders, {{{GL_COMPUTE_SHADER, "maps/history_fade.comp"}}}),
+      coveredTexelsCompute_(shaders, {{{GL_COMPUTE_SHADER, "maps/covered_texels.comp"}}}),
       dummyDir_(colourArray(GL_RGBA32F, 1, 1)),
       dummyPoint_(cubeArray(GL_RGBA32F, 1, 1)) {
   const float zero[4] = {0, 0, 0, 0};
@@ -481,12 +486,15 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
       // (radiosityMapBytes) did not count from the start.
       historyMean_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
       historyFresh_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
+      const std::size_t listBytes = coveredTexelBytes(size, k);
+      coveredTexels_ = listBytes > 0 ? gpu::Buffer(listBytes) : gpu::Buffer();
     }
     if (!history) {
       previousPosition_ = gpu::Texture();
       previousNormal_ = gpu::Texture();
       historyMean_ = gpu::Texture();
       historyFresh_ = gpu::Texture();
+      coveredTexels_ = gpu::Buffer();
     }
     gpu::bindGBuffer(mapGBufferTargets_[mapGBufferSide_], mapPosition_, mapNormal_, mapDepth_, 1.0f,
                      "scattered radiosity maps' G-buffer");
@@ -504,9 +512,11 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     std::swap(mapNormal_, previousNormal_);
     mapGBufferSide_ ^= 1;  // the other pair's target: attached to it already, nothing re-pointed
     drawMapGBuffer();
+    compacted_ = listCoveredTexels(size, k);
     const HistoryTolerance tolerance = historyTolerance(scene, s.historyMove);
     gpu::Program& p = historyCompute_;
     p.use();
+    p.set("uCompacted", compacted_ ? 1 : 0);
     constexpr GLuint kOldPosition = 0, kOldNormal = 1, kNewPosition = 2, kNewNormal = 3;
     p.set("uOldPosition", static_cast<int>(kOldPosition));
     p.set("uOldNormal", static_cast<int>(kOldNormal));
@@ -521,8 +531,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     mapNormal_.bind(kNewNormal);
     glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindImageTexture(1, historyMean_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    const auto groups = static_cast<GLuint>((size + 7) / 8);
-    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    dispatchHistory(size, k);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                     GL_FRAMEBUFFER_BARRIER_BIT);
     frames_ = std::min(frames_, s.history - 1);
@@ -606,7 +615,6 @@ void RadiosityMaps::mergeHistory(const RenderSettings& settings) {
   const bool rescale = settings.sss.historyRescale > 0.0f;
   gpu::Program& p = historyMerge_;
   p.use();
-  const auto groups = static_cast<GLuint>((size + 7) / 8);
   const GLbitfield barrier =
       GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
   glMemoryBarrier(barrier | GL_FRAMEBUFFER_BARRIER_BIT);  // the fragment gather's blending
@@ -614,9 +622,10 @@ void RadiosityMaps::mergeHistory(const RenderSettings& settings) {
   glBindImageTexture(1, historyMean_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
   glBindImageTexture(2, historyFresh_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   p.set("uRescale", static_cast<int>(rescale));
+  p.set("uCompacted", compacted_ ? 1 : 0);
   if (rescale) {
     p.set("uStage", 0);
-    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    dispatchHistory(size, k);
     glMemoryBarrier(barrier);
     glGenerateTextureMipmap(historyMean_.id());
     glGenerateTextureMipmap(historyFresh_.id());
@@ -631,8 +640,54 @@ void RadiosityMaps::mergeHistory(const RenderSettings& settings) {
     p.set("uMaxRatio", kHistoryMaxRatio);
   }
   p.set("uStage", 1);
-  glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+  dispatchHistory(size, k);
   glMemoryBarrier(barrier);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCoveredTexelsBinding, 0);
+  compacted_ = false;
+}
+
+std::size_t coveredTexelBytes(int size, int k) {
+  const std::uint64_t texels = std::uint64_t(size) * std::uint64_t(size) * std::uint64_t(k);
+  return texels >= (std::uint64_t{1} << 32) ? 0 : static_cast<std::size_t>(16 + 4 * texels);
+}
+
+void RadiosityMaps::allowCompactedHistory(bool allow) { compactedHistoryAllowed.store(allow); }
+
+bool RadiosityMaps::listCoveredTexels(int size, int k) {
+  if (!compactedHistoryAllowed.load() || coveredTexels_.size() != coveredTexelBytes(size, k) ||
+      coveredTexels_.size() == 0)
+    return false;
+  const GLuint header[4] = {0, 0, 1, 1};  // no texel yet; 0 × 1 × 1 groups
+  coveredTexels_.upload(0, sizeof header, header);
+  gpu::Program& p = coveredTexelsCompute_;
+  p.use();
+  constexpr GLuint kOld = 0, kNew = 1;
+  p.set("uOldPosition", static_cast<int>(kOld));
+  p.set("uNewPosition", static_cast<int>(kNew));
+  previousPosition_.bind(kOld);
+  mapPosition_.bind(kNew);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCoveredTexelsBinding, coveredTexels_.id());
+  glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);  // the G-buffer just drawn
+  const auto groups = static_cast<GLuint>((size + 7) / 8);
+  glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  // The passes below write only the listed texels of these: the others hold 0, as the full
+  // dispatch would have written there (no surface in either frame: nothing kept).
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(historyMean_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+  glClearTexImage(historyFresh_.id(), 0, GL_RGBA, GL_FLOAT, zero);
+  return true;
+}
+
+void RadiosityMaps::dispatchHistory(int size, int k) const {
+  if (!compacted_) {
+    const auto groups = static_cast<GLuint>((size + 7) / 8);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(k));
+    return;
+  }
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, coveredTexels_.id());
+  glDispatchComputeIndirect(sizeof(GLuint));  // coveredGroups
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
 void RadiosityMaps::startFade(int frames) {
@@ -662,7 +717,7 @@ std::size_t RadiosityMaps::bytes() const {
   return dirPosition_.bytes() + dirNormal_.bytes() + dirDepth_.bytes() + pointPosition_.bytes() +
          pointNormal_.bytes() + pointDepth_.bytes() + maps_.bytes() + mapDepth_.bytes() + mapPosition_.bytes() +
          mapNormal_.bytes() + previousPosition_.bytes() + previousNormal_.bytes() + historyMean_.bytes() +
-         historyFresh_.bytes();
+         historyFresh_.bytes() + coveredTexels_.size();
 }
 
 }  // namespace tallow::sss

@@ -95,6 +95,10 @@ enum class MapsUpdate {
                ///< so that the new maps get sss.frames frames; a restart when the views do not hold
 };
 
+/// Bytes of the history's list of covered texels for K maps of size² (maps/covered_texels.glsl):
+/// a 16-byte header and 4 bytes a texel; 0 when the texels outnumber 2^32 (no list: every texel).
+std::size_t coveredTexelBytes(int size, int k);
+
 class RadiosityMaps {
  public:
   explicit RadiosityMaps(const gpu::ShaderLibrary& shaders);
@@ -107,6 +111,9 @@ class RadiosityMaps {
   /// holds (GL_MAX_ARRAY_TEXTURE_LAYERS, GL_MAX_TEXTURE_SIZE; memory: sss/memory_budget.h), or
   /// when the scene has more translucent objects or lights than the passes hold.
   static void checkLimits(const Scene& scene, const RenderSettings& settings);
+  /// Tests compare the history passes over the listed texels with those over every texel: false
+  /// makes later frames dispatch over every texel.
+  static void allowCompactedHistory(bool allow);
 
   /// Step 1 (pass sss.light_gbuffer): the translucent slots, the objects' bounding sphere, the light
   /// G-buffers' size and textures, then every light's G-buffer drawn.
@@ -187,10 +194,20 @@ class RadiosityMaps {
   /// subtracts it / fadeFrames_ (maps/history_fade.comp).
   void startFade(int frames);
   void fade();
+  /// On a history reuse: lists the texels with a surface in this or the last G-buffer into
+  /// coveredTexels_ (maps/covered_texels.comp) and binds it; false (nothing listed) when not allowed
+  /// or when the maps' texels outnumber 2^32.
+  bool listCoveredTexels(int size, int k);
+  /// A history pass over the listed texels (indirect) when compacted_, else over every texel.
+  void dispatchHistory(int size, int k) const;
 
 
   gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_,
-      historyMerge_, historyFade_;
+      historyMerge_, historyFade_, coveredTexelsCompute_;
+  /// The history passes' texels (issue 39, point 5; maps/covered_texels.glsl): a count, the indirect
+  /// dispatch's groups, a texel index each. Made with the history's textures.
+  gpu::Buffer coveredTexels_;
+  bool compacted_ = false;  ///< this frame's history passes visit the listed texels only
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
   gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
