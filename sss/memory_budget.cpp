@@ -94,7 +94,7 @@ std::size_t radiosityMapBytes(int k, int size, bool computeGather, bool history)
   std::size_t bytes = layers2D(GL_RGBA32F, size, k, levels) + layers2D(GL_DEPTH_COMPONENT32F, size, k);
   // The maps' G-buffer (position, normal): the compute gather's input and the history's; the
   // history keeps the last frame's as well,
-  const std::size_t gbuffer = layers2D(kGBufferPositionFormat, size, k) + layers2D(gBufferNormalFormat(), size, k);
+  const std::size_t gbuffer = layers2D(kGBufferPositionFormat, size, k) + layers2D(kMapGBufferNormalFormat, size, k);
   if (computeGather || history) bytes += gbuffer;
   // and, on a reuse, the kept history and this frame's mean beside it, both mipmapped (the latter
   // also holds what a still after motion fades out), and the list of texels the history visits.

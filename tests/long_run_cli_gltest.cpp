@@ -179,8 +179,10 @@ TEST(LongRuns, CaptureMemoryStaysFlatOverManyFrames) {
   const json& frames = stats["frames"];
   ASSERT_EQ(frames.size(), 50u);
   // After ten frames allocations have settled (buffers, PNG and EXR writers); from there on, at most
-  // the size of four frames more (allocator noise; measured: a tenth of a frame at 320x240 and
-  // 160x120), where keeping the frames would add forty.
+  // the size of eight frames more, where keeping the frames would add forty. Since issue 39 a frame
+  // is written on the writer's thread while the next is fetched: up to three frames' two images
+  // (written, queued, fetched) live at once beside the frame before, and the resident size is read
+  // while they come and go (measured: 4.6 frames' worth once under load; a tenth of a frame before).
   constexpr double kFrameBytes = 160.0 * 120.0 * 16.0;
   const double settled = frames[10]["rss_bytes"].get<double>();
   double largest = 0.0;
@@ -188,7 +190,7 @@ TEST(LongRuns, CaptureMemoryStaysFlatOverManyFrames) {
   std::printf("[ memory  ] resident after frame 10: %.1f MiB, largest after: %.1f MiB (+%.2f frames' worth)\n",
               settled / 1048576.0, largest / 1048576.0, (largest - settled) / kFrameBytes);
   EXPECT_GT(settled, 0.0);
-  EXPECT_LT(largest - settled, 4.0 * kFrameBytes);
+  EXPECT_LT(largest - settled, 8.0 * kFrameBytes);
   // Progress in a log: one line a second at most (and a final summary on stdout).
   const int progressLines = static_cast<int>(std::count(r.err.begin(), r.err.end(), '\n'));
   EXPECT_LE(progressLines, static_cast<int>(seconds) + 1) << r.err;

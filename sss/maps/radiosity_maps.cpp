@@ -477,11 +477,11 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     if (!mapPosition_.id() || mapPosition_.width() != size || mapPosition_.depth() != k) {
       for (gpu::TargetFramebuffer& t : mapGBufferTargets_) t.release();  // none keeps the old G-buffer
       mapPosition_ = colourArray(kGBufferPositionFormat, size, k);
-      mapNormal_ = colourArray(gBufferNormalFormat(), size, k);
+      mapNormal_ = colourArray(kMapGBufferNormalFormat, size, k);
     }
     if (history && (!previousPosition_.id() || previousPosition_.width() != size || previousPosition_.depth() != k)) {
       previousPosition_ = colourArray(kGBufferPositionFormat, size, k);
-      previousNormal_ = colourArray(gBufferNormalFormat(), size, k);
+      previousNormal_ = colourArray(kMapGBufferNormalFormat, size, k);
       // With the last frame's G-buffer, so that the first reuse allocates nothing the memory budget
       // (radiosityMapBytes) did not count from the start.
       historyMean_ = colourArray(GL_RGBA32F, size, k, mipLevels(size));
