@@ -14,6 +14,10 @@ namespace {
 constexpr GLuint kWorkGroup = 64;                        ///< local_size_x of both compute passes
 constexpr int kVertexStride = 8 * sizeof(float);  ///< position, normal, cell, bits (int bits)
 constexpr int kMeshStride = 7 * sizeof(float);    ///< position, normal, vertex index (int bits)
+/// Compute path: quads.comp's MeshCounts (draw command, triangles made), padded to 8 words.
+constexpr std::size_t kMeshCountsWords = 8;
+/// Compute path's read-back copy: vertices made, corners drawn, triangles made.
+constexpr std::size_t kCountsCopyWords = 4;
 constexpr GLuint kPointsPerBlock = GpuDualContouring::kBlockCells * GpuDualContouring::kBlockCells *
                                    GpuDualContouring::kBlockCells;
 
@@ -29,8 +33,8 @@ std::size_t outputBytes(std::size_t vertices) {
 }  // namespace
 
 GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis, VertexPlacement placement,
-                                     NormalSource normals)
-    : n_(samplesPerAxis), placement_(placement), normals_(normals) {
+                                     NormalSource normals, ExtractionPath path)
+    : n_(samplesPerAxis), path_(path), placement_(placement), normals_(normals) {
   if (n_ < 2) throw std::runtime_error("GpuDualContouring: need at least 2 samples per axis, got " + std::to_string(n_));
   const std::size_t cells = static_cast<std::size_t>(n_ - 1);
   blocks_ = (n_ - 1 + kBlockCells - 1) / kBlockCells;
@@ -45,11 +49,20 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   if (placement_ == VertexPlacement::Qef) vertexDefines.emplace_back("DC_QEF");
   if (normals_ == NormalSource::BlobGradient) vertexDefines.emplace_back("DC_BLOB_NORMALS");
   if (normals_ == NormalSource::CandleGradient) vertexDefines.emplace_back("DC_CANDLE_NORMALS");
+  const bool compute = path_ == ExtractionPath::Compute;
   classify_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/classify.comp"}}, defines});
-  vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
-                                      {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
-                                     vertexDefines, {"tfPosition", "tfNormal", "tfCell", "tfBits"}});
-  indexMap_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/index_map.comp"}}, defines});
+  if (compute) {
+    vertices_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/vertices.comp"}}, vertexDefines});
+    quads_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/quads.comp"}}, defines});
+  } else {
+    vertices_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
+                                        {GL_GEOMETRY_SHADER, "dual_contouring/vertices.geom"}},
+                                       vertexDefines, {"tfPosition", "tfNormal", "tfCell", "tfBits"}});
+    indexMap_ = gpu::Program(library, {{{GL_COMPUTE_SHADER, "dual_contouring/index_map.comp"}}, defines});
+    quads_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
+                                     {GL_GEOMETRY_SHADER, "dual_contouring/quads.geom"}},
+                                    defines, {"tfPosition", "tfNormal", "tfVertex"}});
+  }
   // The patches of every sign configuration, by the shaders' own cellPatches(): built once here.
   patchTable_ = gpu::Buffer(256 * sizeof(GLuint));
   {
@@ -60,9 +73,6 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(0);
   }
-  quads_ = gpu::Program(library, {{{GL_VERTEX_SHADER, "dual_contouring/cells.vert"},
-                                   {GL_GEOMETRY_SHADER, "dual_contouring/quads.geom"}},
-                                  defines, {"tfPosition", "tfNormal", "tfVertex"}});
 
   glNamedFramebufferParameteri(discardTarget_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, 1);
   glNamedFramebufferParameteri(discardTarget_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, 1);
@@ -80,13 +90,15 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   meshWritten_ = gpu::Query(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
   timerStart_ = gpu::Query(GL_TIMESTAMP);
   timerStop_ = gpu::Query(GL_TIMESTAMP);
+  meshCounts_ = gpu::Buffer(kMeshCountsWords * sizeof(GLuint));
+  countsCopy_ = gpu::Buffer(kCountsCopyWords * sizeof(GLuint));
 
   for (gpu::Program* p : {&classify_, &vertices_, &quads_}) {
     p->set("uField", 0);
     p->set("uSamples", n_);
     p->set("uBlocks", blocks_);
   }
-  indexMap_.set("uSamples", n_);
+  if (!compute) indexMap_.set("uSamples", n_);
   setVertexCapacity(vertices);
 }
 
@@ -102,18 +114,36 @@ void GpuDualContouring::setVertexCapacity(std::size_t vertices) {
   meshFeedback_.bindBuffer(0, meshBuffer_);
   meshVao_.setAttribute(0, meshBuffer_, 0, kMeshStride, 3);
   meshVao_.setAttribute(1, meshBuffer_, 3 * sizeof(float), kMeshStride, 3);
-  for (gpu::Program* p : {&indexMap_, &quads_})
-    glProgramUniform1ui(p->id(), p->location("uCapacity"), static_cast<GLuint>(vertexCapacity_));
+  for (gpu::Program* p : {&indexMap_, &quads_, &vertices_})
+    if (p->id() != 0 && p->location("uCapacity") >= 0)
+      glProgramUniform1ui(p->id(), p->location("uCapacity"), static_cast<GLuint>(vertexCapacity_));
+  if (path_ == ExtractionPath::Compute)
+    glProgramUniform1ui(quads_.id(), quads_.location("uTriangleCapacity"), static_cast<GLuint>(triangleCapacity_));
+}
+
+std::optional<GpuDualContouring::Counts> GpuDualContouring::counts(bool wait) const {
+  if (path_ == ExtractionPath::Compute) {
+    if (countsReady_.empty()) return Counts{};
+    if (!wait && !countsReady_.signaled()) return std::nullopt;
+    countsReady_.wait();
+    std::array<GLuint, kCountsCopyWords> c{};
+    countsCopy_.download(0, sizeof(c), c.data());
+    // c: vertices made, corners drawn, triangles made (vertices.comp, quads.comp).
+    return Counts{c[0], std::min<std::size_t>(c[0], extractedVertexCapacity_), c[2], c[1] / 3};
+  }
+  for (const gpu::Query* q : {&vertexGenerated_, &vertexWritten_, &meshGenerated_, &meshWritten_})
+    if (!wait && !q->resultAvailable()) return std::nullopt;
+  return Counts{vertexGenerated_.result(), vertexWritten_.result(), meshGenerated_.result(), meshWritten_.result()};
 }
 
 std::optional<bool> GpuDualContouring::overflowed(bool wait) const {
-  for (const gpu::Query* q : {&vertexGenerated_, &vertexWritten_, &meshGenerated_, &meshWritten_})
-    if (!wait && !q->resultAvailable()) return std::nullopt;
-  return vertexGenerated_.result() > vertexWritten_.result() || meshGenerated_.result() > meshWritten_.result();
+  const std::optional<Counts> c = counts(wait);
+  if (!c) return std::nullopt;
+  return c->verticesMade > c->verticesStored || c->trianglesMade > c->trianglesStored;
 }
 
-std::size_t GpuDualContouring::generatedVertices() const { return vertexGenerated_.result(); }
-std::size_t GpuDualContouring::generatedTriangles() const { return meshGenerated_.result(); }
+std::size_t GpuDualContouring::generatedVertices() const { return counts(true)->verticesMade; }
+std::size_t GpuDualContouring::generatedTriangles() const { return counts(true)->trianglesMade; }
 
 bool GpuDualContouring::growToFit() {
   // The triangles are counted only as far as the vertices they index were stored: after a vertex
@@ -172,8 +202,11 @@ std::vector<float> GpuDualContouring::readLattice() const {
 void GpuDualContouring::extract() {
   if (!uploaded_) throw std::runtime_error("GpuDualContouring::extract: upload() or fillOnGpu() a lattice first");
   glQueryCounter(timerStart_.id(), GL_TIMESTAMP);
-  const std::array<GLuint, 4> drawReset{kPointsPerBlock, 0, 0, 0};  // count, instances, first, base
-  const std::array<GLuint, 4> counterReset{0, 0, 1, 1};             // vertices, groups x, y, z
+  // Geometry shaders draw {count, instances, first, base}; compute dispatches from its second word
+  // on, {instances, 1, 1}.
+  const bool compute = path_ == ExtractionPath::Compute;
+  const std::array<GLuint, 4> drawReset{kPointsPerBlock, 0, compute ? 1u : 0u, compute ? 1u : 0u};
+  const std::array<GLuint, 4> counterReset{0, 0, 1, 1};  // vertices, groups x, y, z
   drawCommand_.upload(0, sizeof(drawReset), drawReset.data());
   vertexCounter_.upload(0, sizeof(counterReset), counterReset.data());
   field_.bind(0);
@@ -185,6 +218,48 @@ void GpuDualContouring::extract() {
   glDispatchCompute(groupsFor(blockCount()), 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
+  if (compute)
+    runComputePasses();
+  else
+    runGeometryShaderPasses();
+  glQueryCounter(timerStop_.id(), GL_TIMESTAMP);
+}
+
+void GpuDualContouring::runComputePasses() {
+  extractedVertexCapacity_ = vertexCapacity_;  // what "stored" means for these counts, whatever is resized later
+  const std::array<GLuint, kMeshCountsWords> countsReset{0, static_cast<GLuint>(commandInstances_), 0, 0, 0, 0, 0, 0};
+  meshCounts_.upload(0, sizeof(countsReset), countsReset.data());
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, drawCommand_.id());
+  constexpr GLintptr kBlocksWord = sizeof(GLuint);  // {instances, 1, 1}: one work group per active block
+
+  // 2. Vertices, and each cell's first one into the index map.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, vertexCounter_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, vertexBuffer_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, patchTable_.id());
+  glBindImageTexture(0, indices_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32I);
+  vertices_.use();
+  glDispatchComputeIndirect(kBlocksWord);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+  // 4. Triangles → mesh buffer, and the draw command's vertex count.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, meshBuffer_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, meshCounts_.id());
+  glBindImageTexture(0, indices_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32I);
+  quads_.use();
+  glDispatchComputeIndirect(kBlocksWord);
+  glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                  GL_BUFFER_UPDATE_BARRIER_BIT);
+
+  // The counts for read-back (tests, stats, overflow): copied, fenced, read when the fence passed.
+  glCopyNamedBufferSubData(vertexCounter_.id(), countsCopy_.id(), 0, 0, sizeof(GLuint));
+  glCopyNamedBufferSubData(meshCounts_.id(), countsCopy_.id(), 0, sizeof(GLuint), sizeof(GLuint));
+  glCopyNamedBufferSubData(meshCounts_.id(), countsCopy_.id(), 4 * sizeof(GLuint), 2 * sizeof(GLuint), sizeof(GLuint));
+  countsReady_ = gpu::Fence::insert();
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  gpu::unbindComputeState(1, 1);
+}
+
+void GpuDualContouring::runGeometryShaderPasses() {
   // 2. Vertices of the active blocks' sign-changing cells.
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, discardTarget_.id());
   glEnable(GL_RASTERIZER_DISCARD);
@@ -232,30 +307,42 @@ void GpuDualContouring::extract() {
   glBindVertexArray(0);
   glDisable(GL_RASTERIZER_DISCARD);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);  // the default, as every pass leaves it (asked for nothing)
-  glQueryCounter(timerStop_.id(), GL_TIMESTAMP);
 }
 
 void GpuDualContouring::draw(int instances) const {
   meshVao_.bind();
-  glDrawTransformFeedbackInstanced(GL_TRIANGLES, meshFeedback_.id(), instances);
+  if (path_ == ExtractionPath::Compute) {
+    if (instances != commandInstances_) {  // the command's instance count, kept for later extractions
+      const GLuint count = static_cast<GLuint>(instances);
+      glNamedBufferSubData(meshCounts_.id(), sizeof(GLuint), sizeof(count), &count);
+      commandInstances_ = instances;
+    }
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, meshCounts_.id());
+    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  } else {
+    glDrawTransformFeedbackInstanced(GL_TRIANGLES, meshFeedback_.id(), instances);
+  }
   glBindVertexArray(0);
 }
 
 void GpuDualContouring::checkOverflow() const {
-  if (vertexGenerated_.result() > vertexWritten_.result())
-    throw std::runtime_error("GpuDualContouring: vertex buffer overflow (" + std::to_string(vertexGenerated_.result()) +
+  const Counts c = *counts(true);
+  if (c.verticesMade > c.verticesStored)
+    throw std::runtime_error("GpuDualContouring: vertex buffer overflow (" + std::to_string(c.verticesMade) +
                              " vertices > capacity " + std::to_string(vertexCapacity_) + ")");
-  if (meshGenerated_.result() > meshWritten_.result())
-    throw std::runtime_error("GpuDualContouring: mesh buffer overflow (" + std::to_string(meshGenerated_.result()) +
+  if (c.trianglesMade > c.trianglesStored)
+    throw std::runtime_error("GpuDualContouring: mesh buffer overflow (" + std::to_string(c.trianglesMade) +
                              " triangles > capacity " + std::to_string(triangleCapacity_) + ")");
 }
 
-std::size_t GpuDualContouring::triangleCount() const { return meshWritten_.result(); }
+std::size_t GpuDualContouring::triangleCount() const { return counts(true)->trianglesStored; }
 std::optional<std::size_t> GpuDualContouring::triangleCountIfAvailable() const {
-  if (!meshWritten_.resultAvailable()) return std::nullopt;
-  return meshWritten_.result();
+  const std::optional<Counts> c = counts(false);
+  if (!c) return std::nullopt;
+  return c->trianglesStored;
 }
-std::size_t GpuDualContouring::vertexCount() const { return vertexWritten_.result(); }
+std::size_t GpuDualContouring::vertexCount() const { return counts(true)->verticesStored; }
 double GpuDualContouring::lastExtractionMs() const {
   return static_cast<double>(timerStop_.result() - timerStart_.result()) * 1e-6;
 }
@@ -268,7 +355,7 @@ std::size_t GpuDualContouring::activeBlockCount() const {
 
 std::size_t GpuDualContouring::bufferBytes() const {
   return activeBlocks_.size() + patchTable_.size() + drawCommand_.size() + vertexCounter_.size() + vertexBuffer_.size() +
-         meshBuffer_.size() + field_.bytes() + indices_.bytes();
+         meshBuffer_.size() + meshCounts_.size() + countsCopy_.size() + field_.bytes() + indices_.bytes();
 }
 
 TriangleMesh GpuDualContouring::readBack() const {

@@ -4,7 +4,9 @@
 // sampled on the CPU (still mesh fields) or on the GPU by fillOnGpu() with a compute program that
 // evaluates the field itself (the blob and the candle: GpuBlobField, GpuCandleField,
 // shaders/fields/lattice.comp; a melting mesh: GpuMeltField, shaders/fields/mesh_melt_lattice.comp;
-// no CPU lattice, no upload). Four passes, all on the GPU:
+// no CPU lattice, no upload). Four passes, all on the GPU, the middle ones in geometry shaders
+// with transform feedback or in compute shaders (ExtractionPath, field.extraction; same records,
+// same buffers, same triangles: DualContouringPaths.* compares them):
 //   1. classify.comp: blocks of kBlockCells³ cells whose samples straddle 0 → active-block list +
 //      indirect draw command (instances = active blocks);
 //   2. cells.vert + vertices.geom: one vertex per surface patch of each sign-changing cell (usually
@@ -18,7 +20,12 @@
 //      dispatched indirectly;
 //   4. cells.vert + quads.geom: two triangles per sign-changing edge, outward winding, captured by
 //      transform feedback into the mesh buffer, drawn with glDrawTransformFeedback.
+// With ExtractionPath::Compute, passes 2 and 4 are vertices.comp and quads.comp (one work group per
+// active block, dispatched indirectly), which reserve their records' places with atomics; pass 2
+// writes the index map itself (no pass 3), and the mesh is drawn by glDrawArraysIndirect from the
+// count pass 4 leaves. The per-cell work is one source for both (cell_vertices.glsl, cell_quads.glsl).
 // Nothing is read back in extract() or draw(); the query-based accessors are for tests and stats.
+#include "geometry/extraction_path.h"
 #include "geometry/grid_sampler.h"
 #include "geometry/triangle_mesh.h"
 #include "geometry/vertex_placement.h"
@@ -59,7 +66,8 @@ class GpuDualContouring {
   /// exceed kMaxBufferBytes.
   GpuDualContouring(const gpu::ShaderLibrary& library, int samplesPerAxis,
                     VertexPlacement placement = kDefaultPlacement,
-                    NormalSource normals = NormalSource::LatticeGradient);
+                    NormalSource normals = NormalSource::LatticeGradient,
+                    ExtractionPath path = kDefaultExtraction);
 
   /// Copies `lattice` into the GL_R32F 3D texture (n must match the constructor's).
   void upload(const SampledLattice& lattice);
@@ -70,26 +78,28 @@ class GpuDualContouring {
   void fillOnGpu(gpu::Program& fill, glm::dvec3 origin, double cellSize);
   /// Runs the four passes on the uploaded lattice; no CPU read-back, no stall.
   void extract();
-  /// The vertex pass's program (pass 2): with NormalSource::BlobGradient / CandleGradient the
+  /// The vertex pass's program (pass 2, either stage): with NormalSource::BlobGradient / CandleGradient the
   /// field's uniforms (shaders/fields/blob_uniforms.glsl, candle_uniforms.glsl) must be set here
   /// before extract().
   gpu::Program& normalProgram() { return vertices_; }
   NormalSource normalSource() const { return normals_; }
+  ExtractionPath path() const { return path_; }
   std::size_t uploadCount() const { return uploads_; }  ///< upload() calls so far
   std::size_t gpuFillCount() const { return gpuFills_; }  ///< fillOnGpu() calls so far
   /// Draws the last extraction as GL_TRIANGLES with the caller's program bound (attribute 0:
-  /// position in world units, 1: unit normal), by glDrawTransformFeedback(Instanced), `instances`
-  /// times (gl_InstanceID).
+  /// position in world units, 1: unit normal), `instances` times (gl_InstanceID): by
+  /// glDrawTransformFeedbackInstanced, or on the compute path by glDrawArraysIndirect (the command's
+  /// instance count is rewritten when it changes).
   void draw(int instances = 1) const;
 
   // --- Read-back (tests, `tallow mesh`, stats); each waits for the GPU. ---
   /// The last extraction as an indexed mesh (vertices shared by vertex-buffer index); throws
   /// std::runtime_error when a buffer overflowed.
   TriangleMesh readBack() const;
-  std::size_t triangleCount() const;   ///< GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN of pass 4
+  std::size_t triangleCount() const;   ///< triangles stored by pass 4
   /// triangleCount without a wait: nullopt while the GPU has not finished the extraction.
   std::optional<std::size_t> triangleCountIfAvailable() const;
-  std::size_t vertexCount() const;     ///< vertices captured in pass 2
+  std::size_t vertexCount() const;     ///< vertices stored by pass 2
   std::size_t activeBlockCount() const;
   std::size_t blockCount() const { return static_cast<std::size_t>(blocks_) * blocks_ * blocks_; }
   /// GPU time of the last extract() from GL_TIMESTAMP queries (llvmpipe's first GL_TIME_ELAPSED
@@ -119,7 +129,18 @@ class GpuDualContouring {
   VertexPlacement placement() const { return placement_; }
 
  private:
+  /// What the last extraction made and stored: on the geometry-shader path its transform-feedback
+  /// queries, on the compute path its counters, copied after it and fenced.
+  struct Counts {
+    std::size_t verticesMade = 0, verticesStored = 0, trianglesMade = 0, trianglesStored = 0;
+  };
+  /// The counts, waiting for them with `wait`, otherwise nullopt while the GPU has not finished.
+  std::optional<Counts> counts(bool wait) const;
+  void runGeometryShaderPasses();
+  void runComputePasses();
+
   int n_ = 0, blocks_ = 0;
+  ExtractionPath path_ = kDefaultExtraction;
   VertexPlacement placement_ = kDefaultPlacement;
   NormalSource normals_ = NormalSource::LatticeGradient;
   std::size_t vertexCapacity_ = 0, triangleCapacity_ = 0;
@@ -141,6 +162,12 @@ class GpuDualContouring {
   /// 1×1 default size (GL 4.3).
   gpu::Framebuffer discardTarget_;
   gpu::Query vertexGenerated_, vertexWritten_, meshGenerated_, meshWritten_, timerStart_, timerStop_;
+  // Compute path: the mesh's draw command and triangle counter, their copy with the vertex counter
+  // for read-back, and the fence after the copy; the instance count in the command.
+  gpu::Buffer meshCounts_, countsCopy_;
+  gpu::Fence countsReady_;
+  mutable int commandInstances_ = 1;
+  std::size_t extractedVertexCapacity_ = 0;  ///< the vertex buffer's capacity at the last compute extraction
 };
 
 }  // namespace tallow::geometry

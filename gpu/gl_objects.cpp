@@ -78,6 +78,7 @@ const char* formatName(GLenum format) {
     case GL_R32F: return "GL_R32F";
     case GL_RG16F: return "GL_RG16F";
     case GL_R32UI: return "GL_R32UI";
+    case GL_RGBA32UI: return "GL_RGBA32UI";
     case GL_R32I: return "GL_R32I";
     case GL_DEPTH_COMPONENT16: return "GL_DEPTH_COMPONENT16";
     case GL_DEPTH_COMPONENT24: return "GL_DEPTH_COMPONENT24";
@@ -197,7 +198,7 @@ std::size_t bytesPerTexel(GLenum format) {
     case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_R11F_G11F_B10F: return 4;
     case GL_RGBA16F: case GL_RG32F: return 8;
     case GL_RGB32F: return 12;
-    case GL_RGBA32F: return 16;
+    case GL_RGBA32F: case GL_RGBA32UI: return 16;
     default: return 4;
   }
 }

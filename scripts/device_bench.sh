@@ -235,7 +235,7 @@ if [ "$mode" != full ]; then scene_sizes=("${sizes[@]}"); slow=4; fi
 pause="$runs/pause.script"
 echo "frame 0 pause" >"$pause"
 dc=($dc_res) fovs=($occ_fovs)
-total=$((3 + 2 + ${#dc[@]} + 2 * ${#fovs[@]}))
+total=$((3 + 2 + 2 * ${#dc[@]} + 2 * ${#fovs[@]}))
 [ "$scene_frames" -gt 0 ] && total=$((total + 2))
 
 echo "bench.sh: mode $mode, $total rows, budget ${budget}s, context $gl"
@@ -266,10 +266,15 @@ for gather in fragment compute; do
     --repeats "$gather_repeats" --gather "$gather"
 done
 # Dual contouring of the melting candle at each lattice (shading by albedo only, so that the frame
-# is the field passes and the surfaces).
+# is the field passes and the surfaces), by both extraction paths (field.extraction: compute, the
+# default, row dc_RES; geometry shaders with transform feedback, row dc_RES_geometry).
 for res in "${dc[@]}"; do
-  run_row "dc_$res" capture 150 capture --preset candle --size "$size" --set method=albedo --set "field.res=$res" \
-    --frames "$dc_frames" --fps 30
+  for extraction in compute geometry; do
+    name="dc_$res"
+    [ "$extraction" = compute ] || name="dc_${res}_$extraction"
+    run_row "$name" capture 150 capture --preset candle --size "$size" --set method=albedo --set "field.res=$res" \
+      --set "field.extraction=$extraction" --frames "$dc_frames" --fps 30
+  done
 done
 if [ "$scene_frames" -gt 0 ]; then
   run_row bunny capture 90 capture --preset bunny --size "$size" --frames "$scene_frames" --script "$pause" "${scene_sizes[@]}"

@@ -15,7 +15,8 @@
 # scripts/results_animated.py), and a 10 000-frame capture's
 # bytes, time and memory per frame (issue 37, point 6, scripts/results_soak.py), and the melting
 # candle measured on its meshes (issue 35, point 6, scripts/results_melt.py), and the clean picture
-# (issue 36: anti-aliasing, glare, dither; scripts/results_picture.py). Every
+# (issue 36: anti-aliasing, glare, dither; scripts/results_picture.py), and dual contouring in
+# compute against geometry shaders (issue 39, point 1; scripts/results_extraction.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -238,6 +239,7 @@ with open(dst, "w") as f:
 PY
 python3 "$root/scripts/results_bench.py" report "$work/bench" "$root/docs/RESULTS.md.tmp" "$root/docs/images/results"
 python3 "$root/scripts/results_placement.py" "$work/placement.json" "$root/docs/RESULTS.md.tmp"
+python3 "$root/scripts/results_extraction.py" "$work/extraction.json" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_fields.py" report "$work/fields" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_history.py" report "$work/history" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_auto.py" report "$work/auto" "$root/docs/RESULTS.md.tmp"

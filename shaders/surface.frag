@@ -1,8 +1,9 @@
 #version 450 core
 // The camera pass. Opaque surfaces: Lambertian reflection of every light (with shadows), of the
 // light the frame's method carries to the surroundings (surroundingsIrradiance: the VPLs' emergent light,
-// Eq. 15) and of a uniform ambient sky,
-// L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces (uTranslucent):
+// Eq. 15, where a method sums it here; the radiosity maps add it after the pass in compute from the
+// receivers' point, normal and albedo this pass leaves, maps/vpl_receivers.comp) and of a uniform
+// ambient sky, L = ρ/π · (E + E_vpl) + ρ · L_ambient. Translucent surfaces (uTranslucent):
 // L = F_t(ω_o)/π · B (Eq. 5) + F_r(ω_o) · L_env(mirror direction): the specular reflection,
 // Fresnel-weighted, of the environment map, or of the uniform ambient sky when there is none
 // (render.specular off: no reflection), and of the candles' flames (flame/flame_mirror.glsl: the
@@ -16,6 +17,7 @@
 #include "bssrdf/fresnel.glsl"
 #include "materials/slots.glsl"
 #include "flame/flame_mirror.glsl"
+#include "common/octahedral.glsl"
 #include TALLOW_SURFACE_METHOD
 
 // Depth test before shading: fragments behind what is already drawn cost no shading.
@@ -55,6 +57,11 @@ layout(location = 2) out uvec2 oCoverageBins;
 // The translucent part of oRadiance, F_t/π·B (a: 1 on a translucent surface, 0 elsewhere): a still
 // weights it by the samples the estimate holds and the rest equally (camera/still_average.comp).
 layout(location = 3) out vec4 oTranslucent;
+// An opaque pixel's point (xyz: its float bits) and normal (w: packOctahedral's bits), in an
+// integer target so that no bit is changed on the way, and its albedo (a: 1), for the passes that
+// light the receivers after this one; a = 0 elsewhere.
+layout(location = 4) out uvec4 oReceiver;
+layout(location = 5) out vec4 oReceiverAlbedo;
 
 const float PI = 3.14159265358979;
 
@@ -96,6 +103,8 @@ void main() {
     oRadiance = vec4(transmitted + specular, 1.0);
     oTranslucent = vec4(transmitted, 1.0);
     oCoverage = vec4(1.0, shading.seenBy > 0.0 ? 1.0 : 0.0, 0.0, 1.0);
+    oReceiver = uvec4(0u);
+    oReceiverAlbedo = vec4(0.0);
     return;
   }
   if (backFacing) n = -n;
@@ -104,4 +113,6 @@ void main() {
   oCoverage = vec4(0.0, 0.0, 1.0, 0.0);
   oCoverageBins = uvec2(0u);
   oTranslucent = vec4(0.0);
+  oReceiver = uvec4(floatBitsToUint(vWorldPosition), packOctahedral(n));
+  oReceiverAlbedo = vec4(uAlbedo, 1.0);
 }

@@ -15,25 +15,26 @@ struct FieldObjects::Entry {
   FieldSource source;  ///< the field over time and its bounds (field units, every t)
   std::unique_ptr<geometry::GpuDualContouring> dc;
   std::unique_ptr<GpuFieldFill> fill;  ///< the kind's GPU fill, made at its first lattice on the GPU; null: none
-  int res = 0;
-  geometry::VertexPlacement placement = geometry::kDefaultPlacement;
-  bool onGpu = true;  ///< field.evaluate of the last lattice
+  FieldMeshing meshing;  ///< of the last lattice
   double timeS = std::numeric_limits<double>::quiet_NaN();
   bool pending = false;  ///< sampled (uploaded or filled on the GPU), not extracted yet
   bool extracted = false;
   bool checked = true;   ///< the last extraction's overflow was looked at (growOverflowed)
 
   Entry(int index, const SceneObject& object) : objectIndex(index), source(object) {}
-  bool stale(double t, int r, geometry::VertexPlacement p, bool gpu) const {
-    return dc == nullptr || r != res || p != placement || gpu != onGpu || (source.animated() && t != timeS);
+  bool stale(double t, const FieldMeshing& m) const {
+    return dc == nullptr || m != meshing || (source.animated() && t != timeS);
   }
 };
 
+FieldMeshing fieldMeshingOf(const RenderSettings& s) {
+  return {s.fieldRes, s.fieldPlacement, s.fieldOnGpu, s.fieldExtraction};
+}
+
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
-                                                                const FieldSource& source, int n,
-                                                                geometry::VertexPlacement placement, bool onGpu) {
-  const geometry::NormalSource normals = onGpu ? source.gpuNormals() : geometry::NormalSource::LatticeGradient;
-  return std::make_unique<geometry::GpuDualContouring>(shaders, n, placement, normals);
+                                                                const FieldSource& source, const FieldMeshing& m) {
+  const geometry::NormalSource normals = m.onGpu ? source.gpuNormals() : geometry::NormalSource::LatticeGradient;
+  return std::make_unique<geometry::GpuDualContouring>(shaders, m.res, m.placement, normals, m.extraction);
 }
 
 void putFieldLattice(const FieldSource& source, double timeS, geometry::GpuDualContouring& dc, GpuFieldFill* onGpu) {
@@ -64,23 +65,19 @@ bool FieldObjects::animated() const {
   return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->source.animated(); });
 }
 
-bool FieldObjects::stale(double timeS, int res, geometry::VertexPlacement placement, bool onGpu) const {
-  return std::any_of(entries_.begin(), entries_.end(),
-                     [&](const auto& e) { return e->stale(timeS, res, placement, onGpu); });
+bool FieldObjects::stale(double timeS, const FieldMeshing& meshing) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) { return e->stale(timeS, meshing); });
 }
 
-void FieldObjects::sample(double timeS, int res, geometry::VertexPlacement placement, bool onGpu,
-                          SceneGeometry& geometry) {
+void FieldObjects::sample(double timeS, const FieldMeshing& meshing, SceneGeometry& geometry) {
   for (auto& e : entries_) {
-    if (!e->stale(timeS, res, placement, onGpu)) continue;
-    if (!e->dc || e->res != res || e->placement != placement || e->onGpu != onGpu)
-      e->dc = makeFieldExtractor(shaders_, e->source, res, placement, onGpu);
+    if (!e->stale(timeS, meshing)) continue;
+    if (!e->dc || e->meshing != meshing) e->dc = makeFieldExtractor(shaders_, e->source, meshing);
     // field.evaluate=cpu: every lattice sampled on the CPU (the path before the GPU fields).
+    const bool onGpu = meshing.onGpu;
     if (onGpu && !e->fill) e->fill = e->source.gpuFill(shaders_);  // static data go up at its first fill
     putFieldLattice(e->source, timeS, *e->dc, onGpu ? e->fill.get() : nullptr);
-    e->res = res;
-    e->placement = placement;
-    e->onGpu = onGpu;
+    e->meshing = meshing;
     e->timeS = timeS;
     e->pending = true;
     geometry.attachField(e->objectIndex, e->dc.get(), e->source.bounds());

@@ -17,6 +17,7 @@
 #include "geometry/scalar_field.h"
 #include "gpu/shader_library.h"
 #include "sss/field_kind.h"
+#include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
 
@@ -24,13 +25,21 @@ namespace tallow::sss {
 
 class FieldSource;
 
-/// An extractor for `source` at n³ samples, as the renderer makes it: the vertex normals the
-/// field's kind gives when it is evaluated on the GPU (`onGpu`, field.evaluate; the analytic
-/// gradient of a blob or a candle), otherwise from the lattice.
+/// How field objects are sampled and contoured: the field.* parameters.
+struct FieldMeshing {
+  int res = 64;                                                              ///< field.res
+  geometry::VertexPlacement placement = geometry::kDefaultPlacement;         ///< field.placement
+  bool onGpu = true;                                                         ///< field.evaluate
+  geometry::ExtractionPath extraction = geometry::kDefaultExtraction;        ///< field.extraction
+  bool operator==(const FieldMeshing&) const = default;
+};
+FieldMeshing fieldMeshingOf(const RenderSettings& settings);
+
+/// An extractor for `source` as the renderer makes it (res³ samples, the placement and stages
+/// asked): the vertex normals the field's kind gives when it is evaluated on the GPU (`onGpu`,
+/// field.evaluate; the analytic gradient of a blob or a candle), otherwise from the lattice.
 std::unique_ptr<geometry::GpuDualContouring> makeFieldExtractor(const gpu::ShaderLibrary& shaders,
-                                                                const FieldSource& source, int n,
-                                                                geometry::VertexPlacement placement,
-                                                                bool onGpu = true);
+                                                                const FieldSource& source, const FieldMeshing& meshing);
 
 /// Puts `source`'s field at t on `dc`'s lattice, as the renderer does: with `onGpu` (its kind's
 /// FieldSource::gpuFill, made by the caller; nullptr with field.evaluate=cpu or for a kind without
@@ -49,16 +58,15 @@ class FieldObjects {
   /// True when some field object changes with time.
   bool animated() const;
   bool empty() const { return entries_.empty(); }
-  /// True when some field must be sampled and extracted again for time t at `res` samples per axis
-  /// with vertices placed by `placement` and evaluated where `onGpu` says (field.evaluate): nothing
-  /// extracted yet, res, placement or evaluation changed, or t changed for an animated field.
-  bool stale(double timeS, int res, geometry::VertexPlacement placement, bool onGpu = true) const;
+  /// True when some field must be sampled and extracted again for time t with `meshing`: nothing
+  /// extracted yet, a field.* parameter changed, or t changed for an animated field.
+  bool stale(double timeS, const FieldMeshing& meshing) const;
   /// The lattice at t of every stale field (pass "field.sample"): a blob's or a candle's filled on
   /// the GPU (the CPU only sets uniforms and dispatches), a melting mesh's too (its grids uploaded at
   /// its first fill), a still mesh field's sampled on the CPU and uploaded; with onGpu = false
   /// (field.evaluate=cpu) every field's sampled on the CPU and uploaded, normals from the lattice;
   /// re-attaches the extractors to `geometry` (call geometry.update afterwards).
-  void sample(double timeS, int res, geometry::VertexPlacement placement, bool onGpu, SceneGeometry& geometry);
+  void sample(double timeS, const FieldMeshing& meshing, SceneGeometry& geometry);
   /// GPU extraction of every field sampled by the last sample() (pass "field.extract").
   void extract();
   /// Transform-feedback overflow on the render path (issue 38): for each field whose last

@@ -54,6 +54,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("field.res", [](S s) { return s.fieldRes; }));
     t.push_back(setting("field.placement", [](S s) { return s.fieldPlacement; }));
     t.push_back(setting("field.evaluate", [](S s) { return s.fieldOnGpu; }));
+    t.push_back(setting("field.extraction", [](S s) { return s.fieldExtraction; }));
     t.push_back(setting("method", [](S s) { return s.sss.method; }));
     t.push_back(setting("sss.model", [](S s) { return s.sss.model; }));
     t.push_back(setting("sss.maps", [](S s) { return s.sss.maps; }));

@@ -66,14 +66,13 @@ PassIo FieldSamplePass::io(const FrameState& state) const {
   // The fields' shapes are fixed when the renderer is made (FieldObjects); only t and the lattice
   // resolution change what is sampled. The extractor, made here, holds the vertex placement. A field
   // that does not move does not read t.
-  PassIo io{{"field.res", "field.placement", "field.evaluate"}, {resource::kFieldLattice}, {}};
+  PassIo io{{"field.res", "field.placement", "field.evaluate", "field.extraction"}, {resource::kFieldLattice}, {}};
   if (anyAnimatedField(state.scene)) io.reads.push_back("time");
   return io;
 }
 
 void FieldSamplePass::run(FrameContext& context, bool /*changed*/) {
-  context.modules.find<FieldObjects>()->sample(context.state.timeS, context.settings().fieldRes,
-                                               context.settings().fieldPlacement, context.settings().fieldOnGpu,
+  context.modules.find<FieldObjects>()->sample(context.state.timeS, fieldMeshingOf(context.settings()),
                                                context.geometry);
   context.geometry.update(context.scene());
 }
@@ -84,7 +83,10 @@ std::string FieldExtractPass::reason(const FrameState& state) const {
   return std::string("GPU dual contouring (vertices at the ") +
          (state.settings.fieldPlacement == geometry::VertexPlacement::Qef ? "tangent planes' quadric minimum"
                                                                           : "edge crossings' mass point") +
-         ") of the field lattice(s) into transform-feedback buffers";
+         ") of the field lattice(s), " +
+         (state.settings.fieldExtraction == geometry::ExtractionPath::Compute
+              ? "by compute shaders into buffers drawn indirectly"
+              : "by geometry shaders into transform-feedback buffers");
 }
 
 PassIo FieldExtractPass::io(const FrameState&) const { return {{resource::kFieldLattice}, {resource::kGeometry}, {}}; }
@@ -157,6 +159,7 @@ void CameraPass::run(FrameContext& context, bool /*changed*/) {
   const glm::uvec4 noBins(0u);
   glClearNamedFramebufferuiv(t.framebuffer.id(), GL_COLOR, 2, &noBins.x);
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 3, &none.x);
+  glClearNamedFramebufferfv(t.framebuffer.id(), GL_COLOR, 5, &none.x);  // no receiver (4 is read only where 5 says)
   const float one = 1.0f;
   glClearNamedFramebufferfv(t.framebuffer.id(), GL_DEPTH, 0, &one);
   context.cameraFrame = frame_++;

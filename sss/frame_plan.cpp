@@ -37,6 +37,7 @@ std::vector<Pass*> FramePlan::passes(const FrameState& state) {
   for (Pass* p : m.passes(state)) out.push_back(p);
   camera_.setMethod(m);
   out.push_back(&camera_);
+  for (Pass* p : m.afterCamera(state)) out.push_back(p);
   if (flame_.needed(state)) out.push_back(&flame_);
   if (still_.needed(state)) out.push_back(&still_);  // it averages the finished picture
   if (bloom_.needed(state)) out.push_back(&bloom_);  // the glare of the picture shown

@@ -37,6 +37,9 @@ constexpr std::size_t kDcMeshVertexBytes = 7 * sizeof(float);
 /// vertex counter (four words each).
 constexpr std::size_t kDcPatchTableBytes = 256 * sizeof(std::uint32_t);
 constexpr std::size_t kDcCommandBytes = 4 * sizeof(std::uint32_t);
+/// The compute path's mesh counts (draw command, triangles made; 8 words) and their read-back copy
+/// (4 words), allocated whichever path runs.
+constexpr std::size_t kDcComputeCountBytes = (8 + 4) * sizeof(std::uint32_t);
 
 std::size_t layers2D(GLenum format, int size, int layers, int levels = 1) {
   return Texture::bytesFor(GL_TEXTURE_2D_ARRAY, format, size, size, layers, levels);
@@ -59,9 +62,11 @@ std::size_t FrameMemory::total() const {
 }
 
 std::size_t renderTargetBytes(int width, int height) {
-  // sss::CameraTarget: radiance, coverage, coverage bins, the translucent part, depth.
+  // sss::CameraTarget: radiance, coverage, coverage bins, the translucent part, depth, the opaque
+  // receivers' point and normal, their albedo.
   return 2 * screen(GL_RGBA32F, width, height) + screen(GL_RGBA8, width, height) + screen(GL_RG8UI, width, height) +
-         screen(GL_DEPTH_COMPONENT32F, width, height);
+         screen(GL_DEPTH_COMPONENT32F, width, height) + screen(GL_RGBA32UI, width, height) +
+         screen(GL_RGBA16F, width, height);
 }
 
 std::size_t shadowMapBytes(const Scene& scene, const RenderSettings& settings) {
@@ -128,7 +133,7 @@ std::size_t dualContouringBytes(int samplesPerAxis) {
   const std::size_t vertices = std::min(GpuDualContouring::kMaxPatchesPerCell * cells * cells * cells,
                                         GpuDualContouring::kVerticesPerFaceCell * cells * cells);
   const std::size_t triangles = GpuDualContouring::kTrianglesPerVertex * vertices;
-  return blocks * blocks * blocks * sizeof(std::uint32_t) + kDcPatchTableBytes + 2 * kDcCommandBytes +
+  return blocks * blocks * blocks * sizeof(std::uint32_t) + kDcPatchTableBytes + 2 * kDcCommandBytes + kDcComputeCountBytes +
          vertices * kDcVertexBytes + triangles * 3 * kDcMeshVertexBytes +
          Texture::bytesFor(GL_TEXTURE_3D, GL_R32F, samplesPerAxis, samplesPerAxis, samplesPerAxis, 1) +
          Texture::bytesFor(GL_TEXTURE_3D, GL_R32I, samplesPerAxis - 1, samplesPerAxis - 1, samplesPerAxis - 1, 1);

@@ -13,13 +13,19 @@ void CameraTarget::ensure(int width, int height) {
   coverageBins.setFilter(GL_NEAREST, GL_NEAREST);
   translucent = gpu::Texture::create2D(GL_RGBA32F, width, height);
   translucent.setFilter(GL_NEAREST, GL_NEAREST);
+  receiver = gpu::Texture::create2D(GL_RGBA32UI, width, height);
+  receiver.setFilter(GL_NEAREST, GL_NEAREST);
+  receiverAlbedo = gpu::Texture::create2D(GL_RGBA16F, width, height);
+  receiverAlbedo.setFilter(GL_NEAREST, GL_NEAREST);
   framebuffer = gpu::Framebuffer();
   framebuffer.attachColor(0, radiance);
   framebuffer.attachColor(1, coverage);
   framebuffer.attachColor(2, coverageBins);
   framebuffer.attachColor(3, translucent);
+  framebuffer.attachColor(4, receiver);
+  framebuffer.attachColor(5, receiverAlbedo);
   framebuffer.attachDepth(depth);
-  framebuffer.setDrawBuffers(4);
+  framebuffer.setDrawBuffers(6);
   framebuffer.checkComplete("camera target");
 }
 

@@ -90,10 +90,18 @@ class ModuleStore {
 /// still's average weights it by the estimate's samples, sss/still_average.h) and depth.
 struct CameraTarget {
   gpu::Texture radiance, coverage, coverageBins, translucent, depth;
+  /// The opaque receivers' G-buffer the camera pass leaves for the passes that light them after it
+  /// (the VPLs' emergent light, sss/maps/virtual_point_lights.h): receiver xyz = world point's float
+  /// bits, w = its unit normal (common/octahedral.glsl), integers so that no bit changes; receiverAlbedo rgb = ρ, a = 1 on an opaque
+  /// receiver (cleared to 0 each frame).
+  gpu::Texture receiver, receiverAlbedo;
   gpu::Framebuffer framebuffer;
   /// (Re)allocates for width × height; keeps the textures when the size is unchanged.
   void ensure(int width, int height);
-  std::size_t bytes() const { return radiance.bytes() + coverage.bytes() + coverageBins.bytes() + translucent.bytes() + depth.bytes(); }
+  std::size_t bytes() const {
+    return radiance.bytes() + coverage.bytes() + coverageBins.bytes() + translucent.bytes() + depth.bytes() +
+           receiver.bytes() + receiverAlbedo.bytes();
+  }
 };
 
 /// Everything a pass's run() may use.

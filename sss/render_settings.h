@@ -1,6 +1,7 @@
 #pragma once
 // Every tunable of the renderer, one field each. The names, ranges, defaults and help live in one
 // place only, the parameter registry (app/config/params.cpp); this struct just holds the values.
+#include "geometry/extraction_path.h"
 #include "geometry/vertex_placement.h"
 #include "gpu/tonemap.h"
 #include "sss/bssrdf/bssrdf.h"
@@ -130,6 +131,9 @@ struct RenderSettings {
   /// GPU from t; false (cpu) samples every field on the CPU and uploads it, normals from the lattice
   /// (the path before issue 16, kept to measure against).
   bool fieldOnGpu = true;
+  /// field.extraction: the stages of dual contouring's vertex and quad passes (geometry shaders with
+  /// transform feedback, the paper's, or compute shaders).
+  geometry::ExtractionPath fieldExtraction = geometry::kDefaultExtraction;
   bool specular = true;       ///< render.specular: Fresnel reflection of the environment on translucent objects
   bool flame = true;          ///< render.flame: the visible flame of a burning candle (sss/flame_pass.h)
   /// flame.exposure_ev: the drawn flame's own exposure, stops (sss/flame_pass.h: a global exposure set

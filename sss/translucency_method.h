@@ -61,6 +61,10 @@ class TranslucencyMethod {
   /// True when the method's VPLs count coverage too; they run only when the maps change, so their
   /// last counts stand for the frames after.
   virtual bool countsVplCoverage(const FrameState& /*state*/) const { return false; }
+  /// The passes this method adds right after the camera pass, in order: what it adds to the picture
+  /// from the receivers' G-buffer the camera pass left (CameraTarget::receiver, receiverAlbedo; the
+  /// VPLs' emergent light on the opaque surroundings). Empty for methods that carry no such light.
+  virtual std::vector<Pass*> afterCamera(const FrameState& /*state*/) { return {}; }
 };
 
 /// True when the scene has a translucent object.

@@ -107,7 +107,7 @@ TEST(DeviceBundle, QuickBenchFromAnEmptiedEnvironmentWritesBothReports) {
                                quote(out.string()),
                            tmp.path());
   ASSERT_EQ(bench.exitCode, 0) << bench.out << bench.err;
-  EXPECT_NE(bench.out.find("[10/10"), std::string::npos) << "progress is printed row by row:\n" << bench.out;
+  EXPECT_NE(bench.out.find("[11/11"), std::string::npos) << "progress is printed row by row:\n" << bench.out;
   ASSERT_TRUE(fs::exists(out / "results.json"));
   ASSERT_TRUE(fs::exists(out / "results.md"));
   const json r = json::parse(slurp(out / "results.json"));
@@ -116,11 +116,14 @@ TEST(DeviceBundle, QuickBenchFromAnEmptiedEnvironmentWritesBothReports) {
   EXPECT_NE(r["device"]["GL_RENDERER"].get<std::string>().find("llvmpipe"), std::string::npos);
   EXPECT_EQ(r["device"]["backend"], "egl");
   EXPECT_TRUE(r["device"]["software"].get<bool>());
+  // The limits that decide the passes' paths are logged (issue 39, point 6).
+  ASSERT_TRUE(r["device"].contains("gl_limits"));
+  EXPECT_TRUE(r["device"]["gl_limits"].contains("GL_MAX_GEOMETRY_OUTPUT_VERTICES")) << r["device"].dump();
   EXPECT_EQ(r["meta"]["mode"], "quick");
 
   // Every row ran and was read.
   const std::set<std::string> expected = {"preflight", "candle_animated", "candle_converged", "gather_fragment",
-                                          "gather_compute", "dc_32", "occupancy_radiosity-maps_35",
+                                          "gather_compute", "dc_32", "dc_32_geometry", "occupancy_radiosity-maps_35",
                                           "occupancy_radiosity-maps_17", "occupancy_no-cache_35", "occupancy_no-cache_17"};
   std::set<std::string> names;
   for (const json& row : r["rows"]) {
@@ -157,13 +160,19 @@ TEST(DeviceBundle, QuickBenchFromAnEmptiedEnvironmentWritesBothReports) {
                      gather["runs"][pass]["evaluations_per_s"].get<double>() * gather["flops_per_sample"].get<double>());
   }
 
-  // Dual contouring through EGL extracted a surface: 31³ cells, a candle's worth of triangles.
-  ASSERT_EQ(r["figures"]["dual_contouring"].size(), 1u);
-  const json& dc = r["figures"]["dual_contouring"][0];
-  EXPECT_EQ(dc["res"], 32);
-  EXPECT_DOUBLE_EQ(dc["cells"].get<double>(), 31.0 * 31.0 * 31.0);
-  EXPECT_GT(dc["triangles"].get<double>(), 500.0);
-  EXPECT_GT(dc["cells_per_s"].get<double>(), 0.0);
+  // Dual contouring through EGL extracted a surface by both paths: 31³ cells, a candle's worth of
+  // triangles, the same count each way.
+  ASSERT_EQ(r["figures"]["dual_contouring"].size(), 2u);
+  std::set<std::string> extractions;
+  for (const json& dc : r["figures"]["dual_contouring"]) {
+    extractions.insert(dc["extraction"].get<std::string>());
+    EXPECT_EQ(dc["res"], 32);
+    EXPECT_DOUBLE_EQ(dc["cells"].get<double>(), 31.0 * 31.0 * 31.0);
+    EXPECT_GT(dc["triangles"].get<double>(), 500.0);
+    EXPECT_GT(dc["cells_per_s"].get<double>(), 0.0);
+    EXPECT_EQ(dc["triangles"], r["figures"]["dual_contouring"][0]["triangles"]);
+  }
+  EXPECT_EQ(extractions, (std::set<std::string>{"compute", "geometry"}));
 
   // Occupancy: a narrower field of view makes the blob cover more of the screen, for both methods.
   for (const char* method : {"radiosity-maps", "no-cache"}) {

@@ -197,6 +197,13 @@ TEST(FieldSceneGL, FieldPassesRunOnlyWhenTheTimeOrResolutionChanges) {
   EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), finer, 0.5), "field.extract"));
   s.renderer().render(s.scene(), finer, 0.5);
   EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), finer, 0.5), "field.extract"));
+  // The other extraction path is a new extractor: extracted again, once.
+  finer.fieldExtraction = finer.fieldExtraction == geometry::ExtractionPath::Compute
+                              ? geometry::ExtractionPath::GeometryShader
+                              : geometry::ExtractionPath::Compute;
+  EXPECT_TRUE(hasPass(s.renderer().planFrame(s.scene(), finer, 0.5), "field.extract"));
+  s.renderer().render(s.scene(), finer, 0.5);
+  EXPECT_FALSE(hasPass(s.renderer().planFrame(s.scene(), finer, 0.5), "field.extract"));
 }
 
 TEST(FieldSceneGL, MeshFieldRendersTheBunnyThroughTheLevelSetPath) {

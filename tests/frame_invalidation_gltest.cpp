@@ -26,6 +26,7 @@
 #include "gpu/gl_context.h"
 #include "sss/frame_plan.h"
 #include "sss/maps/radiosity_maps.h"
+#include "sss/maps/virtual_point_lights.h"
 #include "sss/renderer.h"
 #include "support/render_support.h"
 
@@ -185,7 +186,7 @@ TEST(FrameInvalidation, EveryInputIsReadByAPassAndEveryResourceIsWritten) {
   for (const char* expected : {"field.sample", "field.extract", "shadow.directional", "shadow.point", "sss.light_gbuffer",
                                "sss.maps", "vpl", "sslpv.voxelize", "sslpv.light_gbuffer", "sslpv.inject",
                                "sslpv.propagate", "image_space.gbuffer", "image_space.scatter", "image_space.combine",
-                               "surface"})
+                               "surface", "vpl.receivers"})
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected << " is not planned";
   for (const std::string& input : sss::inputNames()) {
     if (sss::isDisplayOnlyInput(input)) {
@@ -274,13 +275,16 @@ void checkEveryParameter(const std::string& method, int minimumVisible, const Va
   // Frames of the base scene until one runs only the camera pass and the candle's flame drawn over
   // it (sss.maps=auto decides K from the coverage of a frame or two before: glFinish makes that lag
   // the same in every run). Returns the K in use (0 without maps).
+  // With VPLs their light on the receivers is added after each camera pass (vpl.receivers).
+  const std::string settled =
+      sss::VirtualPointLights::applies(base.scene, base.render) ? "flame surface vpl.receivers" : "flame surface";
   const auto settle = [&] {
     std::string ran;
-    for (int frame = 0; frame < 6 && ran != "flame surface"; ++frame) {
+    for (int frame = 0; frame < 6 && ran != settled; ++frame) {
       ran = join(ranPasses(renderer.render(base.scene, base.render, t)));
       glFinish();
     }
-    EXPECT_EQ(ran, "flame surface") << variant.name << ", " << method << ": the base scene does not settle";
+    EXPECT_EQ(ran, settled) << variant.name << ", " << method << ": the base scene does not settle";
     return renderer.module<sss::RadiosityMaps>() ? static_cast<int>(renderer.module<sss::RadiosityMaps>()->views().size()) : 0;
   };
   // The settings as the passes saw them: sss.maps=auto replaced by the K in use.

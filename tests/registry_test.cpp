@@ -163,6 +163,17 @@ TEST_F(RegistryTest, FieldEvaluateIsGpuByDefaultAndCpuOnRequest) {
             "field.evaluate: unknown value \"gpus\" (did you mean \"gpu\"?); choices: gpu, cpu");
 }
 
+TEST_F(RegistryTest, FieldExtractionIsComputeByDefaultAndGeometryShadersOnRequest) {
+  EXPECT_EQ(config.render.fieldExtraction, geometry::ExtractionPath::Compute);
+  EXPECT_EQ(registry.get(config, "field.extraction"), "compute");
+  EXPECT_EQ(registry.find("field.extraction")->choices, (std::vector<std::string>{"compute", "geometry"}));
+  registry.set(config, "field.extraction", "geometry");
+  EXPECT_EQ(config.render.fieldExtraction, geometry::ExtractionPath::GeometryShader);
+  EXPECT_EQ(registry.get(config, "field.extraction"), "geometry");
+  EXPECT_EQ(setError("field.extraction", "geometri"),
+            "field.extraction: unknown value \"geometri\" (did you mean \"geometry\"?); choices: compute, geometry");
+}
+
 TEST_F(RegistryTest, MapSizesAndCountAreAutoByDefaultAndTakeAnIntegerOrAuto) {
   for (const char* key : {"sss.map_size", "sss.light_map_size", "sss.maps"}) {
     SCOPED_TRACE(key);

@@ -121,7 +121,7 @@ json captureMetrics(const json& stats) {
   const json& p = stats.value("parameters", json::object());
   json params = json::object();
   for (const char* key : {"method", "sss.maps", "sss.samples", "sss.map_size", "sss.light_map_size", "sss.frames",
-                          "sss.gather", "vpl.count", "field.res", "camera.fov_deg", "material"})
+                          "sss.gather", "vpl.count", "field.res", "field.extraction", "camera.fov_deg", "material"})
     if (p.contains(key)) params[key] = p[key];
   const json& res = stats.at("resolution");
   json out = {{"resolution", res},
@@ -234,6 +234,7 @@ json figures(const json& rows, const json& device, const flops::GatherFlops& flo
     const double cells = std::pow(double(res - 1), 3.0);
     const double triangles = m["triangles"].get<double>();
     dc.push_back({{"res", res},
+                  {"extraction", m["parameters"].value("field.extraction", std::string("geometry"))},
                   {"extract_gpu_ms", ms},
                   {"cells", cells},
                   {"cells_per_s", ms > 0 ? json(cells / (ms * 1e-3)) : json(nullptr)},
@@ -329,6 +330,9 @@ json buildReport(const fs::path& runs, const flops::GatherFlops& flops, const js
           device["GL_RENDERER"] = glString(out, "GL_RENDERER");
           device["GL_VERSION"] = glString(out, "GL_VERSION");
           device["backend"] = glString(out, "backend");
+          // The limits that decide a pass's path on this driver (stats.json's gl.limits: the
+          // geometry shader's output, transform feedback, the layer in the vertex shader).
+          if (out.contains("gl") && out["gl"].contains("limits")) device["gl_limits"] = out["gl"]["limits"];
         }
       } catch (const std::exception& e) {
         row["status"] = "failed";

@@ -74,6 +74,11 @@ std::string renderMarkdown(const json& r) {
         "comes from those runs.\n\n";
   md << "- Device: `" << str(dev["GL_RENDERER"]) << "`, " << str(dev["GL_VENDOR"]) << ", OpenGL " << str(dev["GL_VERSION"])
      << ", context `" << str(dev["backend"]) << "`\n";
+  if (dev.contains("gl_limits") && dev["gl_limits"].is_object()) {
+    md << "- GL limits:";
+    for (const auto& [key, value] : dev["gl_limits"].items()) md << " `" << key << "` " << value.dump() << ";";
+    md << "\n";
+  }
   if (dev["nvidia_smi_name"].is_string())
     md << "- nvidia-smi: " << str(dev["nvidia_smi_name"]) << ", driver " << str(dev["nvidia_smi_driver"]) << ", "
        << str(dev["nvidia_smi_memory_mib"]) << " MiB, maximum SM clock " << str(dev["nvidia_smi_max_sm_clock_mhz"])
@@ -121,7 +126,8 @@ std::string renderMarkdown(const json& r) {
   md << "\n";
   md << "- Dual contouring (melting candle, GPU time of `field.extract`):";
   for (const json& d : fig["dual_contouring"])
-    md << " " << d["res"].get<int>() << "³: **" << si(d["cells_per_s"]) << " cells/s**;";
+    md << " " << d["res"].get<int>() << "³ " << d.value("extraction", std::string("geometry")) << ": **"
+       << si(d["cells_per_s"]) << " cells/s**;";
   if (fig["dual_contouring"].empty()) md << " —";
   md << "\n";
   const json& occ = fig["occupancy"];
@@ -206,12 +212,15 @@ std::string renderMarkdown(const json& r) {
          << si(run["flops_per_s"]) << " | " << pct(run["share_of_fp32_peak"]) << " |\n";
     }
   md << "\n## Dual contouring\n\n";
-  md << "Cells = (res − 1)³ per extraction; `field.extract` is the GPU's four passes (docs/presets.md). The "
+  md << "Cells = (res − 1)³ per extraction; `field.extract` is the GPU's passes (docs/presets.md), by either "
+        "`field.extraction`: compute shaders or geometry shaders with transform feedback. The "
         "lattice is filled each frame before it (`field.sample`, in the frame's wall time): on the GPU for a blob, "
         "sampled on the CPU and uploaded for a candle or mesh field.\n\n";
-  md << "| lattice | extract GPU [ms] | cells/s | triangles | triangles/s | frame fps |\n|---:|---:|---:|---:|---:|---:|\n";
+  md << "| lattice | extraction | extract GPU [ms] | cells/s | triangles | triangles/s | frame fps |\n"
+        "|---:|---|---:|---:|---:|---:|---:|\n";
   for (const json& d : fig["dual_contouring"])
-    md << "| " << d["res"].get<int>() << "³ | " << fmt(d["extract_gpu_ms"], 3) << " | " << si(d["cells_per_s"]) << " | "
+    md << "| " << d["res"].get<int>() << "³ | " << d.value("extraction", std::string("geometry")) << " | "
+       << fmt(d["extract_gpu_ms"], 3) << " | " << si(d["cells_per_s"]) << " | "
        << si(d["triangles"]) << " | " << si(d["triangles_per_s"]) << " | " << fmt(d["frame_fps"]) << " |\n";
   md << "\n## Cached against no-cache by occupancy\n\n";
   md << "| method | fov [°] | occupancy | wall [ms] | GPU [ms] |\n|---|---:|---:|---:|---:|\n";

@@ -6,6 +6,9 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "app/commands/frame_stats.h"
 #include "app/commands/provenance.h"
@@ -77,25 +80,46 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
       const geometry::SampledLattice lattice = geometry::sampleField(*field, n);
       const double sampleMs = msSince(t0);
 
-      geometry::GpuDualContouring dc(library, n);
-      std::vector<double> uploadMs, gpuMs, wallMs, cpuMs;
-      dc.upload(lattice);  // warm-up: first upload, first extraction
-      dc.extract();
-      glFinish();
-      for (int r = 0; r < o.repeats; ++r) {
-        t0 = std::chrono::steady_clock::now();
-        dc.upload(lattice);
-        glFinish();
-        uploadMs.push_back(msSince(t0));
-        t0 = std::chrono::steady_clock::now();
+      // Both stages of passes 2 and 4 (field.extraction), the default's figures first in the row.
+      struct PathTimes {
+        double uploadMs = 0.0, gpuMs = 0.0, wallMs = 0.0;
+        std::size_t triangles = 0, vertices = 0, activeBlocks = 0, blocks = 0, bufferBytes = 0;
+      };
+      auto timePath = [&](geometry::ExtractionPath path) {
+        geometry::GpuDualContouring dc(library, n, geometry::kDefaultPlacement, geometry::NormalSource::LatticeGradient,
+                                       path);
+        std::vector<double> uploadMs, gpuMs, wallMs;
+        dc.upload(lattice);  // warm-up: first upload, first extraction
         dc.extract();
         glFinish();
-        wallMs.push_back(msSince(t0));
-        gpuMs.push_back(dc.lastExtractionMs());
-      }
-      dc.checkOverflow();
-      const std::size_t gpuTriangles = dc.triangleCount();
+        for (int r = 0; r < o.repeats; ++r) {
+          auto start = std::chrono::steady_clock::now();
+          dc.upload(lattice);
+          glFinish();
+          uploadMs.push_back(msSince(start));
+          start = std::chrono::steady_clock::now();
+          dc.extract();
+          glFinish();
+          wallMs.push_back(msSince(start));
+          gpuMs.push_back(dc.lastExtractionMs());
+        }
+        dc.checkOverflow();
+        return PathTimes{median(uploadMs), median(gpuMs),        median(wallMs),       dc.triangleCount(),
+                         dc.vertexCount(), dc.activeBlockCount(), dc.blockCount(),   dc.bufferBytes()};
+      };
+      const geometry::ExtractionPath other = geometry::kDefaultExtraction == geometry::ExtractionPath::Compute
+                                                 ? geometry::ExtractionPath::GeometryShader
+                                                 : geometry::ExtractionPath::Compute;
+      const PathTimes main = timePath(geometry::kDefaultExtraction), second = timePath(other);
+      const std::size_t gpuTriangles = main.triangles;
+      nlohmann::json paths = nlohmann::json::object();
+      for (const auto& [path, times] : {std::pair{geometry::kDefaultExtraction, main}, std::pair{other, second}})
+        paths[std::string(geometry::extractionPathName(path))] = {{"gpu_extract_ms", times.gpuMs},
+                                                                  {"gpu_extract_wall_ms", times.wallMs},
+                                                                  {"gpu_triangles", times.triangles},
+                                                                  {"gpu_vertices", times.vertices}};
 
+      std::vector<double> cpuMs;
       std::size_t cpuTriangles = geometry::meshOnCpu(lattice, *field).triangles.size();  // warm-up
       for (int r = 0; r < o.repeats; ++r) {
         t0 = std::chrono::steady_clock::now();
@@ -103,27 +127,31 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
         cpuMs.push_back(msSince(t0));
       }
 
-      const double gpuMedian = median(gpuMs), wallMedian = median(wallMs), cpuMedian = median(cpuMs);
+      const double gpuMedian = main.gpuMs, wallMedian = main.wallMs, cpuMedian = median(cpuMs);
       auto perSecond = [](std::size_t triangles, double ms) { return ms > 0.0 ? static_cast<double>(triangles) / (ms * 1e-3) : 0.0; };
       rows.push_back({{"res", n},
                       {"sample_cpu_ms", sampleMs},
-                      {"gpu_upload_ms", median(uploadMs)},
+                      {"gpu_upload_ms", main.uploadMs},
                       {"gpu_extract_ms", gpuMedian},
                       {"gpu_extract_wall_ms", wallMedian},
                       {"gpu_triangles", gpuTriangles},
-                      {"gpu_vertices", dc.vertexCount()},
+                      {"gpu_vertices", main.vertices},
                       {"gpu_triangles_per_s", perSecond(gpuTriangles, gpuMedian)},
                       {"gpu_wall_triangles_per_s", perSecond(gpuTriangles, wallMedian)},
-                      {"active_blocks", dc.activeBlockCount()},
-                      {"blocks", dc.blockCount()},
-                      {"gpu_buffer_bytes", dc.bufferBytes()},
+                      {"active_blocks", main.activeBlocks},
+                      {"blocks", main.blocks},
+                      {"gpu_buffer_bytes", main.bufferBytes},
+                      {"extraction", std::string(geometry::extractionPathName(geometry::kDefaultExtraction))},
+                      {"paths", paths},
                       {"cpu_mesh_ms", cpuMedian},
                       {"cpu_triangles", cpuTriangles},
                       {"cpu_triangles_per_s", perSecond(cpuTriangles, cpuMedian)}});
       char line[256];
       std::snprintf(line, sizeof line,
-                    "%-6s %3d³  sample %8.2f ms  gpu %8.2f ms (wall %8.2f)  cpu %8.2f ms  triangles gpu %zu cpu %zu",
-                    name.c_str(), n, sampleMs, gpuMedian, wallMedian, cpuMedian, gpuTriangles, cpuTriangles);
+                    "%-6s %3d³  sample %8.2f ms  gpu %8.2f ms (wall %8.2f; %s %8.2f)  cpu %8.2f ms  triangles gpu %zu cpu %zu",
+                    name.c_str(), n, sampleMs, gpuMedian, wallMedian,
+                    std::string(geometry::extractionPathName(other)).c_str(), second.gpuMs, cpuMedian, gpuTriangles,
+                    cpuTriangles);
       progress.print(line, stdout);
       progress.update(++done);
     }
@@ -143,7 +171,8 @@ int runProbeExtraction(const ProbeExtractionOptions& o) {
       {"gpu",
        glJson(*context)},
       {"notes",
-       "medians of `repeats` runs after one warm-up; gpu_extract_ms from GL_TIMESTAMP queries around extract(), "
+       "medians of `repeats` runs after one warm-up; gpu_* figures are the default extraction path's (`extraction`), "
+       "`paths` has both (field.extraction); gpu_extract_ms from GL_TIMESTAMP queries around extract(), "
        "gpu_extract_wall_ms is extract() + glFinish() on the CPU clock; upload excluded from both; cpu_mesh_ms is "
        "OpenVDB volumeToMesh plus per-vertex field gradients on the same lattice"}};
   gpu::writeTextFileAtomically(o.out, result.dump(2) + "\n");

@@ -46,8 +46,7 @@ sss::FieldMeshes meshEachField(const std::vector<PlacedField>& fields, const sss
       // As the renderer: blob and candle evaluated on the GPU with analytic normals, a melting mesh
       // from its NanoVDB grids and the melt at t, still meshes uploaded; with field.evaluate=cpu
       // every lattice sampled on the CPU and uploaded.
-      const auto dc = sss::makeFieldExtractor(*shaders, f.source, render.fieldRes, render.fieldPlacement,
-                                              render.fieldOnGpu);
+      const auto dc = sss::makeFieldExtractor(*shaders, f.source, sss::fieldMeshingOf(render));
       const std::unique_ptr<sss::GpuFieldFill> onGpu = render.fieldOnGpu ? f.source.gpuFill(*shaders) : nullptr;
       sss::putFieldLattice(f.source, timeS, *dc, onGpu.get());
       dc->extract();

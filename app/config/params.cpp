@@ -303,6 +303,23 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
 
   {
     Param p = withDefault(
+        declare("field.extraction", "enum", "",
+                "Which shader stages run dual contouring's vertex and triangle passes: compute (compute shaders "
+                "write the records into buffers with atomics, drawn indirectly: keeps the work off the raster units, "
+                "which some GPUs have few of) or geometry (geometry shaders captured by transform feedback, the "
+                "radiosity-maps paper's path). Both make the same vertices and triangles; the default measured "
+                "faster (docs/RESULTS.md, `tallow probe extraction`)."),
+        std::string(geometry::extractionPathName(geometry::kDefaultExtraction)));
+    p.choices = {"compute", "geometry"};
+    p.getter = [](const Config& c) { return json(std::string(geometry::extractionPathName(c.render.fieldExtraction))); };
+    p.setter = [](Config& c, const json& v) {
+      c.render.fieldExtraction = geometry::parseExtractionPath(v.get<std::string>());
+    };
+    r.add(std::move(p));
+  }
+
+  {
+    Param p = withDefault(
         declare("field.evaluate", "enum", "",
                 "Where an animated field is evaluated each frame: gpu (the blob, the candle and melting meshes by a "
                 "compute shader from t, normals from the analytic gradient; no upload) or cpu (every field sampled on "

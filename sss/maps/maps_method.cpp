@@ -151,6 +151,24 @@ void VplPass::run(FrameContext& context, bool /*changed*/) {
               context.countMapCoverage);
 }
 
+// --- vpl.receivers ----------------------------------------------------------------------------------
+
+std::string VplReceiversPass::reason(const FrameState& state) const {
+  return "the " + std::to_string(state.settings.vpl.count) +
+         " VPLs' emergent light on every opaque pixel (Eq. 15), in compute over the camera pass's receivers";
+}
+
+PassIo VplReceiversPass::io(const FrameState&) const {
+  // Added to each new picture of the camera pass (kCamera: it reruns whenever that does), from this
+  // frame's VPLs; the VPL shadows' normal offset follows the lights' (render.pcf_radius, shadow_bias).
+  return {{resource::kCamera, resource::kVpls, "render.pcf_radius", "render.shadow_bias"}, {}, {}};
+}
+
+void VplReceiversPass::run(FrameContext& context, bool /*changed*/) {
+  if (VirtualPointLights* vpls = context.modules.find<VirtualPointLights>())
+    vpls->lightReceivers(context.target, context.settings());
+}
+
 // --- the methods ------------------------------------------------------------------------------------
 
 void RadiosityMapsMethod::checkLimits(const FrameState& state) const {
@@ -174,6 +192,18 @@ bool RadiosityMapsMethod::choosesMapCount(const FrameState& state) const {
 
 bool RadiosityMapsMethod::countsVplCoverage(const FrameState& state) const {
   return VirtualPointLights::applies(state.scene, state.settings);
+}
+
+std::string RadiosityMapsMethod::surfaceShader() const {
+  return VirtualPointLights::computeReceivers() ? "maps/surface_algorithm1.glsl"
+                                                : "maps/surface_algorithm1_vpl_fragment.glsl";
+}
+
+std::vector<Pass*> RadiosityMapsMethod::afterCamera(const FrameState& state) {
+  if (!anyTranslucent(state.scene) || !VirtualPointLights::computeReceivers() ||
+      !VirtualPointLights::applies(state.scene, state.settings))
+    return {};
+  return {&vplReceivers_};
 }
 
 void RadiosityMapsMethod::addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,

@@ -47,6 +47,17 @@ class RadiosityMapsPass final : public Pass {
   std::uint64_t motionKey_ = 0;          ///< time and the lights' placement and intensity
 };
 
+/// vpl.receivers: the VPLs' emergent light on the opaque receivers (Eq. 15), ρ/π · E_vpl added to
+/// every opaque pixel of the camera's picture by a compute pass over the receivers' G-buffer the
+/// camera pass left (VirtualPointLights::lightReceivers); after each camera pass.
+class VplReceiversPass final : public Pass {
+ public:
+  std::string name() const override { return "vpl.receivers"; }
+  std::string reason(const FrameState& state) const override;
+  PassIo io(const FrameState& state) const override;
+  void run(FrameContext& context, bool changed) override;
+};
+
 /// vpl: the VPLs of the paper's §3.4 from this frame's maps; again every frame when vpl.stable is off.
 class VplPass final : public Pass {
  public:
@@ -68,11 +79,14 @@ class RadiosityMapsMethod final : public TranslucencyMethod {
   void checkLimits(const FrameState& state) const override;
   std::vector<Pass*> passes(const FrameState& state) override;
   bool shadesTranslucent(const FrameState& state) const override;
-  std::string surfaceShader() const override { return "maps/surface_algorithm1.glsl"; }
+  /// Algorithm 1; the VPLs' light on the surroundings in compute after the pass (lightSurroundings),
+  /// or, where a test asks for the path before (VirtualPointLights::allowComputeReceivers), in it.
+  std::string surfaceShader() const override;
   bool choosesMapCount(const FrameState& state) const override;
   void addMemory(const Scene& scene, const RenderSettings& settings, const BudgetSizes& sizes,
                  FrameMemory& memory) const override;
   bool countsVplCoverage(const FrameState& state) const override;
+  std::vector<Pass*> afterCamera(const FrameState& state) override;
   std::string describeShading(const FrameState& state) const override;
   PassIo surfaceIo(const FrameState& state) const override;
   int surfaceUnits() const override { return 3; }  ///< the maps, their depth, the VPLs' shadow cubes
@@ -84,6 +98,7 @@ class RadiosityMapsMethod final : public TranslucencyMethod {
   std::shared_ptr<LightGBufferPass> gbuffer_;
   RadiosityMapsPass maps_;
   VplPass vpl_;
+  VplReceiversPass vplReceivers_;
 };
 
 class NoCacheMethod final : public TranslucencyMethod {

@@ -1,5 +1,7 @@
 #include "sss/maps/virtual_point_lights.h"
 
+#include "sss/pass.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -129,7 +131,38 @@ std::vector<glm::vec3> surroundedLights(const Scene& scene, const glm::vec3& box
 VirtualPointLights::VirtualPointLights(const gpu::ShaderLibrary& shaders)
     : cubeProgram_(shaders, layeredProgram("maps/map_gbuffer.frag")),
       compute_(shaders, {{{GL_COMPUTE_SHADER, "maps/vpl.comp"}}}),
+      receivers_(shaders, {{{GL_COMPUTE_SHADER, "maps/vpl_receivers.comp"}}}),
       shadows_(shaders) {}
+
+namespace {
+bool gComputeReceivers = true;  ///< VirtualPointLights::allowComputeReceivers (tests)
+}  // namespace
+
+bool VirtualPointLights::computeReceivers() { return gComputeReceivers; }
+void VirtualPointLights::allowComputeReceivers(bool allow) { gComputeReceivers = allow; }
+
+void VirtualPointLights::lightReceivers(const CameraTarget& target, const RenderSettings& settings) {
+  if (count_ == 0) return;
+  constexpr GLuint kGroup = 8;  // vpl_receivers.comp's local size
+  constexpr GLuint kReceiverUnit = 0, kAlbedoUnit = 1, kShadowUnit = 2;
+  setReceiverUniforms(receivers_, this, kShadowUnit);
+  receivers_.set("uPcfRadius", settings.pcfRadius);  // the normal offset of the VPL shadows (common/lights.glsl)
+  receivers_.set("uShadowBias", settings.shadowBias);
+  receivers_.set("uReceiver", static_cast<int>(kReceiverUnit));
+  receivers_.set("uReceiverAlbedo", static_cast<int>(kAlbedoUnit));
+  target.receiver.bind(kReceiverUnit);
+  target.receiverAlbedo.bind(kAlbedoUnit);
+  // The camera pass's colour writes become visible to this pass's fetches and image loads.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+  glBindImageTexture(0, target.radiance.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  receivers_.use();
+  glDispatchCompute((static_cast<GLuint>(target.radiance.width()) + kGroup - 1) / kGroup,
+                    (static_cast<GLuint>(target.radiance.height()) + kGroup - 1) / kGroup, 1);
+  // Later passes sample, fetch, read as an image or copy the radiance.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+  gpu::unbindComputeState(1, 3);
+}
 
 bool VirtualPointLights::applies(const Scene& scene, const RenderSettings& settings) {
   return settings.vpl.count > 0 && RadiosityMaps::applies(scene, settings) && anyOpaque(scene);

@@ -26,6 +26,8 @@
 
 namespace tallow::sss {
 
+struct CameraTarget;
+
 /// One VPL as the GPU holds it (std430, shaders/maps/vpl_receiver.glsl's VplGpu).
 struct VplRecord {
   glm::vec4 position{0.0f};  ///< x_v; w: η of its object (0: inactive, no surface or not backlit)
@@ -84,6 +86,15 @@ class VirtualPointLights {
   /// on a program that includes maps/vpl_receiver.glsl; the cluster cube shadow maps (or a lit dummy)
   /// go on texture unit `shadowUnit`.
   static void setReceiverUniforms(gpu::Program& program, const VirtualPointLights* lights, GLuint shadowUnit);
+  /// Adds the VPLs' emergent light ρ/π · E_vpl (Eq. 15) to every opaque receiver pixel of `target`'s
+  /// radiance, by a compute pass over the receivers' G-buffer the camera pass left
+  /// (shaders/maps/vpl_receivers.comp, one invocation per pixel).
+  void lightReceivers(const CameraTarget& target, const RenderSettings& settings);
+  /// Whether the receivers are lit by lightReceivers (the default) or in the camera pass's fragment
+  /// shader (the path before; tests compare the two). Process-wide; a renderer made after a change
+  /// compiles its camera pass accordingly.
+  static bool computeReceivers();
+  static void allowComputeReceivers(bool allow);
 
   int count() const { return count_; }
   glm::vec3 centre() const { return centre_; }
@@ -95,7 +106,7 @@ class VirtualPointLights {
   std::size_t bytes() const;
 
  private:
-  gpu::Program cubeProgram_, compute_;
+  gpu::Program cubeProgram_, compute_, receivers_;
   gpu::Texture cubePosition_, cubeNormal_, cubeDepth_;
   gpu::Buffer records_, parts_, directions_, faceViews_;
   gpu::TargetFramebuffer cubeTarget_;  ///< the outermost-surface cube's G-buffer
