@@ -4,6 +4,7 @@
 // every texel, bit for bit, and the maps pass must invoke fewer compute shaders.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -20,16 +21,17 @@ struct Played {
   std::uint64_t mapsCompute = 0;  ///< the maps pass's compute invocations in the last frame
 };
 
-/// The preset played at 8 fps for `frames` frames from `start`, the history passes over the listed
-/// texels or over every texel.
-Played play(const std::string& preset, const std::vector<std::string>& sets, double start, int frames,
+/// The preset played at 8 fps for `frames` frames from `start`, then held still for `still` frames
+/// (the kept history fades: maps/history_fade.comp), the history passes over the listed texels or
+/// over every texel.
+Played play(const std::string& preset, const std::vector<std::string>& sets, double start, int frames, int still,
             bool compacted) {
   sss::RadiosityMaps::allowCompactedHistory(compacted);
   test::PresetSession s(preset, sets);
   Played out;
-  for (int f = 0; f < frames; ++f) {
+  for (int f = 0; f < frames + still; ++f) {
     sss::FrameTimings t;
-    out.last = s.render(start + f / 8.0, &t);
+    out.last = s.render(start + std::min(f, frames - 1) / 8.0, &t);
     for (const gpu::PassTiming& p : t.passes)
       if (p.name == "sss.maps" && p.counts) out.mapsCompute = p.counts->compute;
   }
@@ -37,8 +39,8 @@ Played play(const std::string& preset, const std::vector<std::string>& sets, dou
   return out;
 }
 
-void expectSamePictures(const std::string& preset, const std::vector<std::string>& sets, double start) {
-  const Played listed = play(preset, sets, start, 5, true), every = play(preset, sets, start, 5, false);
+void expectSamePictures(const std::string& preset, const std::vector<std::string>& sets, double start, int still = 0) {
+  const Played listed = play(preset, sets, start, 5, still, true), every = play(preset, sets, start, 5, still, false);
   ASSERT_EQ(listed.last.pixels.size(), every.last.pixels.size());
   double lit = 0.0;
   for (std::size_t i = 0; i < listed.last.pixels.size(); ++i) {
@@ -57,6 +59,12 @@ void expectSamePictures(const std::string& preset, const std::vector<std::string
 
 TEST(CoveredHistory, TheBlobPlayingIsDrawnAsWithPassesOverEveryTexel) {
   expectSamePictures("blob", {"render.width=96", "render.height=54", "sss.maps=6", "sss.map_size=128"}, 1.0);
+}
+
+// A still after the motion: the kept frames fade over the texels the last merge listed.
+TEST(CoveredHistory, TheBlobsStillAfterMotionFadesAsWithPassesOverEveryTexel) {
+  expectSamePictures("blob", {"render.width=96", "render.height=54", "sss.maps=6", "sss.map_size=128", "sss.frames=8"},
+                     1.0, 3);
 }
 
 TEST(CoveredHistory, TheMeltingCandleIsDrawnAsWithPassesOverEveryTexel) {

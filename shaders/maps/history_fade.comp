@@ -7,13 +7,17 @@
 // what a restart at the pause accumulates with the same seeds.
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// Over the texels the last moving frame's merge listed (uCompacted), where all of uFrom lies, or
+// over every texel.
+#include "maps/covered_texels.glsl"
+
 uniform float uShare;  // 1 / D
 layout(rgba32f, binding = 0) uniform image2DArray uMaps;
 layout(rgba32f, binding = 1) readonly uniform image2DArray uFrom;
 
 void main() {
-  ivec3 id = ivec3(gl_GlobalInvocationID);
-  if (any(greaterThanEqual(id, imageSize(uMaps)))) return;
+  ivec3 id = historyTexel(imageSize(uMaps));
+  if (id.x < 0 || any(greaterThanEqual(id, imageSize(uMaps)))) return;
   vec4 from = imageLoad(uFrom, id);
   if (from.a <= 0.0) return;
   vec4 m = imageLoad(uMaps, id) - uShare * from;

@@ -445,6 +445,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     seed_ = 0;
   }
   if (update != MapsUpdate::Accumulate) fadeFrames_ = 0;  // a fade in progress ends with the still
+  if (update != MapsUpdate::Accumulate) mapsListed_ = false;  // a merge below lists them again
   // The first frame of a still after motion: the kept frames start to fade, and the count and the
   // seeds start over as a restart at the pause would (its frames then match this still's).
   const bool stillAfterMotion = update == MapsUpdate::Accumulate && lastUpdate_ == MapsUpdate::Reuse && history &&
@@ -531,7 +532,7 @@ void RadiosityMaps::renderMaps(const Scene& scene, const RenderSettings& setting
     mapNormal_.bind(kNewNormal);
     glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindImageTexture(1, historyMean_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    dispatchHistory(size, k);
+    dispatchHistory(size, k, compacted_);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                     GL_FRAMEBUFFER_BARRIER_BIT);
     frames_ = std::min(frames_, s.history - 1);
@@ -625,24 +626,31 @@ void RadiosityMaps::mergeHistory(const RenderSettings& settings) {
   p.set("uCompacted", compacted_ ? 1 : 0);
   if (rescale) {
     p.set("uStage", 0);
-    dispatchHistory(size, k);
+    dispatchHistory(size, k, compacted_);
     glMemoryBarrier(barrier);
-    glGenerateTextureMipmap(historyMean_.id());
-    glGenerateTextureMipmap(historyFresh_.id());
+    const double spanMm = 2.0 * static_cast<double>(viewSphere_.radius) * 1000.0;
+    const auto level =
+        static_cast<float>(historyRescaleLevel(size, spanMm, shortestDiffusionMm_, settings.sss.historyRescale));
+    // Only the levels the ratio reads (a trilinear look-up at uLevel: up to ⌈uLevel⌉), not the
+    // whole chain; the look-up clamps to that level, which it never passes.
+    const int top = std::clamp(static_cast<int>(std::ceil(level)), 0, historyMean_.levels() - 1);
+    for (const gpu::Texture* t : {&historyMean_, &historyFresh_}) {
+      glTextureParameteri(t->id(), GL_TEXTURE_MAX_LEVEL, top);
+      glGenerateTextureMipmap(t->id());
+    }
     constexpr GLuint kHistoryUnit = 0, kFreshUnit = 1;
     p.set("uHistoryMips", static_cast<int>(kHistoryUnit));
     p.set("uFreshMips", static_cast<int>(kFreshUnit));
     historyMean_.bind(kHistoryUnit);
     historyFresh_.bind(kFreshUnit);
-    const double spanMm = 2.0 * static_cast<double>(viewSphere_.radius) * 1000.0;
-    p.set("uLevel", static_cast<float>(
-                        historyRescaleLevel(size, spanMm, shortestDiffusionMm_, settings.sss.historyRescale)));
+    p.set("uLevel", level);
     p.set("uMaxRatio", kHistoryMaxRatio);
   }
   p.set("uStage", 1);
-  dispatchHistory(size, k);
+  dispatchHistory(size, k, compacted_);
   glMemoryBarrier(barrier);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCoveredTexelsBinding, 0);
+  mapsListed_ = compacted_;
   compacted_ = false;
 }
 
@@ -679,8 +687,8 @@ bool RadiosityMaps::listCoveredTexels(int size, int k) {
   return true;
 }
 
-void RadiosityMaps::dispatchHistory(int size, int k) const {
-  if (!compacted_) {
+void RadiosityMaps::dispatchHistory(int size, int k, bool listed) const {
+  if (!listed) {
     const auto groups = static_cast<GLuint>((size + 7) / 8);
     glDispatchCompute(groups, groups, static_cast<GLuint>(k));
     return;
@@ -706,8 +714,12 @@ void RadiosityMaps::fade() {
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   glBindImageTexture(0, maps_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
   glBindImageTexture(1, historyFresh_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-  const auto groups = static_cast<GLuint>((maps_.width() + 7) / 8);
-  glDispatchCompute(groups, groups, static_cast<GLuint>(maps_.depth()));
+  // What fades (the maps when the still began) lies where the last merge's list says: only there,
+  // when it does (the list is left from the last moving frame; a still does not rebuild it).
+  p.set("uCompacted", mapsListed_ ? 1 : 0);
+  if (mapsListed_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCoveredTexelsBinding, coveredTexels_.id());
+  dispatchHistory(maps_.width(), maps_.depth(), mapsListed_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCoveredTexelsBinding, 0);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   gpu::unbindComputeState(2, 0);
   if (++fadeDone_ == fadeFrames_) fadeFrames_ = 0;

@@ -198,8 +198,8 @@ class RadiosityMaps {
   /// coveredTexels_ (maps/covered_texels.comp) and binds it; false (nothing listed) when not allowed
   /// or when the maps' texels outnumber 2^32.
   bool listCoveredTexels(int size, int k);
-  /// A history pass over the listed texels (indirect) when compacted_, else over every texel.
-  void dispatchHistory(int size, int k) const;
+  /// A history pass over the listed texels (indirect) when `listed`, else over every texel.
+  void dispatchHistory(int size, int k, bool listed) const;
 
 
   gpu::Program gbufferProgram_, depthProgram_, mapProgram_, mapGBufferProgram_, mapCompute_, historyCompute_,
@@ -208,6 +208,9 @@ class RadiosityMaps {
   /// dispatch's groups, a texel index each. Made with the history's textures.
   gpu::Buffer coveredTexels_;
   bool compacted_ = false;  ///< this frame's history passes visit the listed texels only
+  /// coveredTexels_ lists every texel where the maps hold anything (the last merge visited the
+  /// listed texels, and nothing restarted since): a still's fade may visit only those.
+  bool mapsListed_ = false;
   gpu::Texture dirPosition_, dirNormal_, dirDepth_;        ///< one layer per directional light
   gpu::Texture pointPosition_, pointNormal_, pointDepth_;  ///< one cube per point light
   gpu::Texture dummyDir_, dummyPoint_;                     ///< bound when a kind of light is absent
