@@ -16,6 +16,10 @@ constexpr int kVertexStride = 8 * sizeof(float);  ///< position, normal, cell, b
 constexpr int kMeshStride = 7 * sizeof(float);    ///< position, normal, vertex index (int bits)
 /// Compute path: quads.comp's MeshCounts (draw command, triangles made), padded to 8 words.
 constexpr std::size_t kMeshCountsWords = 8;
+/// Compute path: draw commands {count, instances, 0, 0}, one per instance count the callers draw
+/// with (1, K maps, 6 cube faces, …), each command's count copied on the GPU after every extraction.
+constexpr std::size_t kDrawCommandSlots = 8;
+constexpr std::size_t kDrawCommandBytes = 4 * sizeof(GLuint);
 /// Compute path's read-back copy: vertices made, corners drawn, triangles made.
 constexpr std::size_t kCountsCopyWords = 4;
 constexpr GLuint kPointsPerBlock = GpuDualContouring::kBlockCells * GpuDualContouring::kBlockCells *
@@ -91,6 +95,7 @@ GpuDualContouring::GpuDualContouring(const gpu::ShaderLibrary& library, int samp
   timerStart_ = gpu::Query(GL_TIMESTAMP);
   timerStop_ = gpu::Query(GL_TIMESTAMP);
   meshCounts_ = gpu::Buffer(kMeshCountsWords * sizeof(GLuint));
+  drawCommands_ = gpu::Buffer(kDrawCommandSlots * kDrawCommandBytes);
   countsCopy_ = gpu::Buffer(kCountsCopyWords * sizeof(GLuint));
 
   for (gpu::Program* p : {&classify_, &vertices_, &quads_}) {
@@ -227,7 +232,7 @@ void GpuDualContouring::extract() {
 
 void GpuDualContouring::runComputePasses() {
   extractedVertexCapacity_ = vertexCapacity_;  // what "stored" means for these counts, whatever is resized later
-  const std::array<GLuint, kMeshCountsWords> countsReset{0, static_cast<GLuint>(commandInstances_), 0, 0, 0, 0, 0, 0};
+  const std::array<GLuint, kMeshCountsWords> countsReset{};
   meshCounts_.upload(0, sizeof(countsReset), countsReset.data());
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, drawCommand_.id());
   constexpr GLintptr kBlocksWord = sizeof(GLuint);  // {instances, 1, 1}: one work group per active block
@@ -250,6 +255,10 @@ void GpuDualContouring::runComputePasses() {
   glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                   GL_BUFFER_UPDATE_BARRIER_BIT);
 
+  // Every draw command's vertex count, on the GPU.
+  for (std::size_t slot = 0; slot < slotInstances_.size(); ++slot)
+    glCopyNamedBufferSubData(meshCounts_.id(), drawCommands_.id(), 0, static_cast<GLintptr>(slot * kDrawCommandBytes),
+                             sizeof(GLuint));
   // The counts for read-back (tests, stats, overflow): copied, fenced, read when the fence passed.
   glCopyNamedBufferSubData(vertexCounter_.id(), countsCopy_.id(), 0, 0, sizeof(GLuint));
   glCopyNamedBufferSubData(meshCounts_.id(), countsCopy_.id(), 0, sizeof(GLuint), sizeof(GLuint));
@@ -312,18 +321,28 @@ void GpuDualContouring::runGeometryShaderPasses() {
 void GpuDualContouring::draw(int instances) const {
   meshVao_.bind();
   if (path_ == ExtractionPath::Compute) {
-    if (instances != commandInstances_) {  // the command's instance count, kept for later extractions
-      const GLuint count = static_cast<GLuint>(instances);
-      glNamedBufferSubData(meshCounts_.id(), sizeof(GLuint), sizeof(count), &count);
-      commandInstances_ = instances;
-    }
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, meshCounts_.id());
-    glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, drawCommands_.id());
+    glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(commandSlot(instances) * kDrawCommandBytes));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   } else {
     glDrawTransformFeedbackInstanced(GL_TRIANGLES, meshFeedback_.id(), instances);
   }
   glBindVertexArray(0);
+}
+
+std::size_t GpuDualContouring::commandSlot(int instances) const {
+  const auto found = std::find(slotInstances_.begin(), slotInstances_.end(), instances);
+  if (found != slotInstances_.end()) return static_cast<std::size_t>(found - slotInstances_.begin());
+  // A new instance count: its command, once; later extractions copy its count with the others'.
+  // Past the slots (never so far: 1, K and 6 are the counts drawn), the last slot is rewritten.
+  const std::size_t slot = std::min(slotInstances_.size(), kDrawCommandSlots - 1);
+  if (slot == slotInstances_.size()) slotInstances_.push_back(instances);
+  slotInstances_[slot] = instances;
+  const std::array<GLuint, 4> command{0, static_cast<GLuint>(instances), 0, 0};
+  drawCommands_.upload(slot * kDrawCommandBytes, sizeof(command), command.data());
+  glCopyNamedBufferSubData(meshCounts_.id(), drawCommands_.id(), 0, static_cast<GLintptr>(slot * kDrawCommandBytes),
+                           sizeof(GLuint));
+  return slot;
 }
 
 void GpuDualContouring::checkOverflow() const {
@@ -355,7 +374,7 @@ std::size_t GpuDualContouring::activeBlockCount() const {
 
 std::size_t GpuDualContouring::bufferBytes() const {
   return activeBlocks_.size() + patchTable_.size() + drawCommand_.size() + vertexCounter_.size() + vertexBuffer_.size() +
-         meshBuffer_.size() + meshCounts_.size() + countsCopy_.size() + field_.bytes() + indices_.bytes();
+         meshBuffer_.size() + meshCounts_.size() + countsCopy_.size() + drawCommands_.size() + field_.bytes() + indices_.bytes();
 }
 
 TriangleMesh GpuDualContouring::readBack() const {

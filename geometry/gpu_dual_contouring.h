@@ -88,8 +88,8 @@ class GpuDualContouring {
   std::size_t gpuFillCount() const { return gpuFills_; }  ///< fillOnGpu() calls so far
   /// Draws the last extraction as GL_TRIANGLES with the caller's program bound (attribute 0:
   /// position in world units, 1: unit normal), `instances` times (gl_InstanceID): by
-  /// glDrawTransformFeedbackInstanced, or on the compute path by glDrawArraysIndirect (the command's
-  /// instance count is rewritten when it changes).
+  /// glDrawTransformFeedbackInstanced, or on the compute path by glDrawArraysIndirect from a command
+  /// per instance count (its vertex count copied on the GPU after each extraction).
   void draw(int instances = 1) const;
 
   // --- Read-back (tests, `tallow mesh`, stats); each waits for the GPU. ---
@@ -165,8 +165,11 @@ class GpuDualContouring {
   // Compute path: the mesh's draw command and triangle counter, their copy with the vertex counter
   // for read-back, and the fence after the copy; the instance count in the command.
   gpu::Buffer meshCounts_, countsCopy_;
+  mutable gpu::Buffer drawCommands_;  ///< draw() makes a command at an instance count's first use
   gpu::Fence countsReady_;
-  mutable int commandInstances_ = 1;
+  mutable std::vector<int> slotInstances_;  ///< the instance count of each draw command in drawCommands_
+  /// The draw command for `instances` (made at its first use).
+  std::size_t commandSlot(int instances) const;
   std::size_t extractedVertexCapacity_ = 0;  ///< the vertex buffer's capacity at the last compute extraction
 };
 

@@ -37,9 +37,9 @@ constexpr std::size_t kDcMeshVertexBytes = 7 * sizeof(float);
 /// vertex counter (four words each).
 constexpr std::size_t kDcPatchTableBytes = 256 * sizeof(std::uint32_t);
 constexpr std::size_t kDcCommandBytes = 4 * sizeof(std::uint32_t);
-/// The compute path's mesh counts (draw command, triangles made; 8 words) and their read-back copy
-/// (4 words), allocated whichever path runs.
-constexpr std::size_t kDcComputeCountBytes = (8 + 4) * sizeof(std::uint32_t);
+/// The compute path's mesh counts (8 words), their read-back copy (4 words) and its 8 draw commands
+/// (4 words each), allocated whichever path runs.
+constexpr std::size_t kDcComputeCountBytes = (8 + 4 + 8 * 4) * sizeof(std::uint32_t);
 
 std::size_t layers2D(GLenum format, int size, int layers, int levels = 1) {
   return Texture::bytesFor(GL_TEXTURE_2D_ARRAY, format, size, size, layers, levels);

@@ -2,7 +2,7 @@
 // Pass 4, compute stage (field.extraction=compute): one work group per active block, one
 // invocation per cell. A cell's triangles (cell_quads.glsl) are appended to the mesh buffer in the
 // transform-feedback path's layout (position, normal, vertex index per corner) at places reserved
-// with one atomic, and the indirect draw's vertex count grows by the corners stored. A cell whose
+// with one atomic, and the count of corners drawn grows by the corners stored. A cell whose
 // triangles do not all fit is dropped whole; since places are reserved in increasing order, the
 // stored triangles form a prefix of the buffer, as transform feedback leaves them.
 layout(local_size_x = BLOCK_CELLS * BLOCK_CELLS * BLOCK_CELLS) in;
@@ -11,10 +11,9 @@ layout(local_size_x = BLOCK_CELLS * BLOCK_CELLS * BLOCK_CELLS) in;
 
 struct DcCorner { float px, py, pz, nx, ny, nz; int vertex; };
 layout(std430, binding = 4) writeonly buffer Mesh { DcCorner corners[]; };
-// DrawArraysIndirectCommand {count, instanceCount, first, baseInstance}, then every triangle made,
-// stored or not (the overflow check).
-layout(std430, binding = 5) buffer MeshCounts { uint cornerCount; uint instanceCount; uint first; uint baseInstance;
-                                                uint trianglesMade; };
+// The corners stored (GpuDualContouring copies it into each draw command after the pass), three
+// words unused, then every triangle made, stored or not (the overflow check).
+layout(std430, binding = 5) buffer MeshCounts { uint cornerCount; uint unused[3]; uint trianglesMade; };
 uniform uint uTriangleCapacity;  // triangles the mesh buffer holds
 
 DcCorner cornerOf(int i) {

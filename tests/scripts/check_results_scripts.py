@@ -161,3 +161,30 @@ assert (results_sections.run_dates(dated("2026-12-02T23:41:57Z", "2026-12-03T00:
 assert results_sections.run_dates([{}, {"provenance": {}}]) == ""
 assert results_sections.run_dates(dated("2026-12-03T08:41:57Z")) == " of 2026-12-03 08:41 UTC"
 print("results scripts: ok")
+
+# The cost model (scripts/cost_model.py) on numbers worked by hand: llvmpipe of 2 cores × 8 lanes at
+# 2 GHz does 32 000 lane-cycles a microsecond; a pure compute pass of 1000 invocations in 1 ms costs
+# 32 000 lane-cycles each, a pure raster pass of 4000 in 2 ms 16 000. A mixed pass (sss.maps: its
+# raster at sss.light_gbuffer's cost) of 1000 raster and 500 compute invocations in 3 ms: raster
+# 1000 × 16 000, compute the rest, (96 000 000 − 16 000 000) / 500 = 160 000. On an H200 compute
+# has 132 × 128 lanes, raster 4 × 128, at 1.98 GHz.
+import cost_model  # noqa: E402
+def pass_counts(raster, compute):
+    return {"vertex": 0, "geometry": 0, "fragment": raster, "compute": compute}
+data = {"path": "synthetic", "renderer": "llvmpipe (LLVM 15.0.6, 256 bits)",
+        "counts": {"camera.still": pass_counts(0, 1000), "sss.light_gbuffer": pass_counts(4000, 0),
+                   "sss.maps": pass_counts(1000, 500)},
+        "ms": {"camera.still": 1.0, "sss.light_gbuffer": 2.0, "sss.maps": 3.0}, "steady_frames": [2]}
+cal = cost_model.calibrate(data, 2, 2.0)
+assert abs(cal["c"]["camera.still"]["compute"] - 32000.0) < 1e-6, cal
+assert abs(cal["c"]["sss.light_gbuffer"]["raster"] - 16000.0) < 1e-6, cal
+assert abs(cal["c"]["sss.maps"]["raster"] - 16000.0) < 1e-6 and abs(cal["c"]["sss.maps"]["compute"] - 160000.0) < 1e-6, cal
+h200 = cost_model.project(cal, data, "h200")
+ms = {r["pass"]: r["ms"] for r in h200["passes"]}
+lane_ms = 1.98e6  # cycles a lane runs in a millisecond
+assert abs(ms["camera.still"] - 1000 * 32000 / (132 * 128 * lane_ms)) < 1e-12, ms
+assert abs(ms["sss.light_gbuffer"] - 4000 * 16000 / (4 * 128 * lane_ms)) < 1e-12, ms
+assert abs(ms["sss.maps"] - (1000 * 16000 / (4 * 128 * lane_ms) + 500 * 160000 / (132 * 128 * lane_ms))) < 1e-12, ms
+# The check on llvmpipe predicts a capture's own times back exactly.
+assert abs(cost_model.check(cal, data)["relative_error"]) < 1e-12
+print("cost model: ok")
