@@ -14,7 +14,7 @@ namespace {
 constexpr GLuint kWorkGroup = 64;                        ///< local_size_x of both compute passes
 constexpr int kVertexStride = 8 * sizeof(float);  ///< position, normal, cell, bits (int bits)
 constexpr int kMeshStride = 7 * sizeof(float);    ///< position, normal, vertex index (int bits)
-/// Compute path: quads.comp's MeshCounts (draw command, triangles made), padded to 8 words.
+/// Compute path: quads.comp's MeshCounts (corners stored, 3 unused words, triangles made), padded to 8 words.
 constexpr std::size_t kMeshCountsWords = 8;
 /// Compute path: draw commands {count, instances, 0, 0}, one per instance count the callers draw
 /// with (1, K maps, 6 cube faces, …), each command's count copied on the GPU after every extraction.
