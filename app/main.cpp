@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string_view>
+#include <vector>
 
 #include "app/command_line_errors.h"
 #include "app/commands/bench_command.h"
@@ -21,6 +23,7 @@
 #include "app/commands/reference_command.h"
 #include "app/config/input_error.h"
 #include "app/config/params.h"
+#include "app/config/setup.h"
 #include "app/view/view_command.h"
 #include "gpu/gl_context.h"
 #include "gpu/shader_library.h"
@@ -40,17 +43,27 @@ void addSceneOptions(CLI::App& cmd, tallow::app::SceneOptions& o) {
   cmd.add_flag("--explain", o.explain, "print the frame plan: which passes run and why");
 }
 
-int listParams() {
+/// `tallow params`: every parameter with its default; with --preset (or --set), the value that
+/// preset gives it instead, in a column headed by the preset's name.
+int listParams(const tallow::app::SceneOptions& scene, bool forPreset) {
   const auto materials = tallow::sss::MaterialTable::load(tallow::app::dataDir() / "materials.csv");
   const tallow::app::Registry registry = tallow::app::parameterRegistry(materials);
+  nlohmann::json values;
+  if (forPreset) {
+    const tallow::app::LoadedScene loaded = tallow::app::loadScene(scene);
+    values = registry.snapshot(loaded.config);
+    std::printf("%-24s %-6s %-22s %-10s %s\n", "key", "type", "range", ("[" + loaded.presetName + "]").c_str(), "help");
+  }
   for (const auto& p : registry.params()) {
     std::string range;
     if (p.type == "int" || p.type == "float" || p.type == "vec3")
       range = "[" + tallow::app::formatNumber(p.min) + ", " + tallow::app::formatNumber(p.max) + "]";
     else if (p.type == "enum")
       range = std::to_string(p.choices.size()) + " choices";
-    std::printf("%-24s %-6s %-22s %-10s %s\n", p.key.c_str(), p.type.c_str(), range.c_str(),
-                p.defaultValue ? p.defaultValue->dump().c_str() : "(preset)", p.help.c_str());
+    const std::string value = forPreset && values.contains(p.key) ? values[p.key].dump()
+                              : p.defaultValue                    ? p.defaultValue->dump()
+                                                                  : "(preset)";
+    std::printf("%-24s %-6s %-22s %-10s %s\n", p.key.c_str(), p.type.c_str(), range.c_str(), value.c_str(), p.help.c_str());
   }
   return 0;
 }
@@ -73,6 +86,7 @@ int main(int argc, char** argv) {
   viewCmd->add_option("--reference", view.reference, "REF.exr for the difference debug view (e.g. from `tallow reference`)");
   viewCmd->add_option("--debug-view", view.debugView, "start in a debug view: final, gbuffer-position[:L[:F]], gbuffer-normal[:L[:F]], map[:K], coverage, vpl, wireframe, difference");
   viewCmd->add_option("--fps", view.fps, "advance the animation by 1/fps per frame instead of by wall time");
+  viewCmd->add_option("--max-step", view.maxStepS, "by wall time, advance the animation at most this many seconds per frame, so a slow machine plays slower instead of skipping (default 1/30; 0: no cap)");
   viewCmd->add_option("--time", view.timeS, "animation time of the first frame [s] (default: the preset's start_s)");
   viewCmd->add_flag("--paused", view.paused, "start with the animation paused");
   viewCmd->add_flag("--no-panel", view.hidePanel, "hide the ImGui panel");
@@ -135,7 +149,9 @@ int main(int argc, char** argv) {
   compareCmd->add_option("b", compare.b, "B.exr (the difference is relative to its RMS radiance)")->required();
   compareCmd->add_option("--out", compare.out, "FIG.png");
   compareCmd->add_option("--json", compare.json, "ERR.json: A's error against B over the mask (relative RMSE, mean ratio overall and per half, fireflies of both)");
-  compareCmd->add_option("--caption", compare.captions, "caption of A, then of B (default: the file names)");
+  compareCmd->add_option("--caption", compare.captions, "caption of A, then of B (default: each file's folder and name)");
+  compareCmd->add_option("--max-rel-rmse", compare.maxRelRmse, "fail (exit 3, one line) when A's relative RMSE against B is above this, e.g. 0.02: a golden-image test");
+  compareCmd->add_option("--max-new-fireflies", compare.maxNewFireflies, "fail (exit 3, one line) when A has more fireflies than this at pixels where B has none");
   compareCmd->add_option("--title", compare.title, "title above the pictures");
   compareCmd->add_option("--mask", compare.mask, "EXR whose alpha >= 0.5 marks the pixels compared (e.g. REF_stderr.exr)");
   compareCmd->add_option("--exposure-ev", compare.exposureEv, "exposure before the tone map [stops]");
@@ -143,7 +159,10 @@ int main(int argc, char** argv) {
   compareCmd->add_flag("--ignore-non-finite", compare.ignoreNonFinite,
                        "leave out the pixels where A or B is NaN or infinite (counted) instead of failing");
 
-  auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default, help");
+  auto* paramsCmd = app.add_subcommand("params", "list every parameter: key, type, range, default (or a preset's value), help");
+  tallow::app::SceneOptions paramsScene;
+  paramsCmd->add_option("--preset", paramsScene.preset, "show this preset's values instead of the defaults")->check(presetNamed());
+  paramsCmd->add_option("--set", paramsScene.sets, "with the preset: override a parameter, key=value (repeatable)");
 
   auto* probeCmd = app.add_subcommand("probe", "evaluate parts of the method outside a scene (BSSRDF, extraction)");
   probeCmd->require_subcommand(1);
@@ -234,14 +253,20 @@ int main(int argc, char** argv) {
   fieldCmd->add_option("--in", field.in, "POINTS.csv (header x,y,z; metres)")->required();
   fieldCmd->add_option("--out", field.out, "VALUES.csv")->required();
 
+  // `view` is the default command: `tallow --preset blob` is `tallow view --preset blob`, as the
+  // README's synopsis writes it (only --help stays the program's own).
+  std::vector<char*> args(argv, argv + argc);
+  static char viewWord[] = "view";
+  if (argc > 1 && argv[1][0] == '-' && std::string_view(argv[1]) != "-h" && std::string_view(argv[1]) != "--help")
+    args.insert(args.begin() + 1, viewWord);
   try {
-    app.parse(argc, argv);
+    app.parse(static_cast<int>(args.size()), args.data());
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "tallow: %s\n", tallow::app::describeParseError(app, e, argc, argv).c_str());
+    std::fprintf(stderr, "tallow: %s\n", tallow::app::describeParseError(app, e, static_cast<int>(args.size()), args.data()).c_str());
     return 2;
   }
 
@@ -250,7 +275,7 @@ int main(int argc, char** argv) {
     if (*referenceCmd) return tallow::app::runReference(reference);
     if (*benchCmd) return tallow::app::runBench(bench);
     if (*compareCmd) return tallow::app::runCompare(compare);
-    if (*paramsCmd) return listParams();
+    if (*paramsCmd) return listParams(paramsScene, !paramsScene.preset.empty() || !paramsScene.sets.empty());
     if (*probeBssrdfCmd) return tallow::app::runProbeBssrdf(probeBssrdf);
     if (*profileCmd) return tallow::app::runProbeProfile(profile);
     if (*costCmd) return tallow::app::runProbeCost(cost);

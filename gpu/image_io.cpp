@@ -693,6 +693,14 @@ ExrPixelType writeExrInto(const std::filesystem::path& tmp, const std::filesyste
 }
 }  // namespace
 
+Image storedAsExr(const Image& image, ExrPixelType type) {
+  if (type != ExrPixelType::Half || censusPixels(image).beyondHalf > 0) return image;
+  Image stored = image;
+  for (glm::vec4& p : stored.pixels)
+    for (int c = 0; c < 4; ++c) p[c] = static_cast<float>(Imath::half(p[c]));
+  return stored;
+}
+
 ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
                       const std::map<std::string, std::string>& attributes) {
   ExrPixelType written = type;

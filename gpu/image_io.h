@@ -53,6 +53,11 @@ PixelCensus censusPixels(const Image& image);
 ExrPixelType writeExr(const std::filesystem::path& path, const Image& image, ExrPixelType type,
                       const std::map<std::string, std::string>& attributes = {});
 
+/// The image as writeExr(…, type) stores it: rounded to half floats where it would write half (the
+/// same choice: float where a finite value is beyond kHalfMax), unchanged otherwise. What a file
+/// read back holds, so that an image compared with its own capture differs by exactly 0.
+Image storedAsExr(const Image& image, ExrPixelType type);
+
 /// Several EXR files (a reference and its standard error) written whole or not at all: each into a
 /// temporary beside it, then, only when every one is written, all renamed onto their names.
 struct ExrOutput {

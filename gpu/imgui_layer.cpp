@@ -4,8 +4,13 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <GLFW/glfw3.h>
+
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
+
+#include "gpu/key_taps.h"
 
 namespace tallow::gpu {
 namespace {
@@ -22,6 +27,18 @@ void loadFont(ImGuiIO& io) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(kFontFile, ec)) return;
   io.Fonts->AddFontFromFileTTF(kFontFile, kFontPixels, nullptr, kGlyphRanges);
+}
+
+/// One layer at a time (one window): its taps, the backend's key callback it wraps, the keys held.
+KeyTaps* activeTaps = nullptr;
+GLFWkeyfun backendKeyCallback = nullptr;
+std::vector<int> heldTaps;
+
+/// The backend's callback first (it passes the key on to the one installed before it: the hotkeys),
+/// then the press remembered.
+void onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  if (backendKeyCallback) backendKeyCallback(window, key, scancode, action, mods);
+  if (activeTaps && action == GLFW_PRESS && key >= 0 && key < IM_ARRAYSIZE(ImGuiIO::KeysDown)) activeTaps->pressed(key);
 }
 
 }  // namespace
@@ -44,9 +61,16 @@ ImGuiLayer::ImGuiLayer(GLFWwindow* window) {
     ImGui::DestroyContext();
     throw std::runtime_error("imgui: the OpenGL 3 backend did not start");
   }
+  window_ = window;
+  activeTaps = &taps_;
+  backendKeyCallback = glfwSetKeyCallback(window, onKey);
 }
 
 ImGuiLayer::~ImGuiLayer() {
+  glfwSetKeyCallback(window_, backendKeyCallback);  // the backend restores the one before it
+  activeTaps = nullptr;
+  backendKeyCallback = nullptr;
+  heldTaps.clear();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
@@ -55,12 +79,19 @@ ImGuiLayer::~ImGuiLayer() {
 void ImGuiLayer::beginFrame() {
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  // A key tapped between two frames is down for this one (gpu/key_taps.h).
+  ImGuiIO& io = ImGui::GetIO();
+  heldTaps = taps_.tapsToHold([&io](int key) { return io.KeysDown[key]; });
+  for (const int key : heldTaps) io.KeysDown[key] = true;
   ImGui::NewFrame();
 }
 
 void ImGuiLayer::endFrame() {
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  ImGuiIO& io = ImGui::GetIO();
+  for (const int key : heldTaps) io.KeysDown[key] = false;  // released after its one frame
+  heldTaps.clear();
 }
 
 bool ImGuiLayer::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }

@@ -2,6 +2,8 @@
 // Dear ImGui in a GLFW window: the context and the GLFW and OpenGL 3 platform/renderer backends
 // (compiled from Debian's libimgui-dev sources, see gpu/CMakeLists.txt), created and destroyed
 // together. One per window; the window's GL context must be current.
+#include "gpu/key_taps.h"
+
 struct GLFWwindow;
 
 namespace tallow::gpu {
@@ -21,6 +23,10 @@ class ImGuiLayer {
   /// ImGui uses the mouse or keyboard now (the camera must not react to it).
   bool wantsMouse() const;
   bool wantsKeyboard() const;
+
+ private:
+  GLFWwindow* window_ = nullptr;
+  KeyTaps taps_;
 };
 
 }  // namespace tallow::gpu

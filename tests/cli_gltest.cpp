@@ -256,6 +256,46 @@ TEST(Cli, AccumulateWritesThePausedSequencesLastFrame) {
   EXPECT_EQ(stats["frames"][0]["sss"]["frames_accumulated"], 3) << stats["frames"][0]["sss"].dump();
 }
 
+TEST(Cli, ACaptureComparedWithItsOwnStoredFrameDiffersByExactlyZero) {
+  // Issue 40, point 4: a stored capture is a golden image (no _stderr.exr beside it: every pixel
+  // compared), and the same capture against it is exactly 0 (the frame compared as its half-float
+  // EXR stores it; 2e-4 before), by capture --reference and by compare --max-rel-rmse 0.
+  test::TempDir dir;
+  const std::vector<std::string> common = {"--preset", "blob", "--size", "48x32", "--set", "sss.maps=4",
+                                           "--set", "sss.map_size=64", "--set", "sss.samples=2"};
+  auto args = [&](std::vector<std::string> a) {
+    a.insert(a.end(), common.begin(), common.end());
+    return a;
+  };
+  const auto golden = dir.path() / "golden", run = dir.path() / "run";
+  ASSERT_EQ(runTallow(args({"capture", "--out", golden.string()})).exitCode, 0);
+  const auto r = runTallow(args({"capture", "--out", run.string(), "--reference", (golden / "frame_0000.exr").string()}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(run / "stats.json");
+  const auto error = nlohmann::json::parse(in)["frames"][0]["reference_error"];
+  EXPECT_EQ(error["rel_rmse"], 0.0) << error.dump();
+  EXPECT_EQ(error["new_fireflies"], 0);
+  EXPECT_EQ(error["pixels"], 48 * 32) << "a plain EXR: every pixel";
+  EXPECT_EQ(error["compared"], "all pixels");
+  const auto c = runTallow({"compare", (run / "frame_0000.exr").string(), (golden / "frame_0000.exr").string(),
+                            "--max-rel-rmse", "0"});
+  EXPECT_EQ(c.exitCode, 0) << c.err;
+}
+
+TEST(Cli, ParamsWithAPresetShowsItsValues) {
+  const auto defaults = runTallow({"params"});
+  const auto candle = runTallow({"params", "--preset", "candle"});
+  ASSERT_EQ(candle.exitCode, 0) << candle.err;
+  const auto line = [](const std::string& text, const std::string& key) {
+    const std::size_t at = text.find("\n" + key + " ");
+    return at == std::string::npos ? std::string() : text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+  };
+  // The registry's default is 0 VPLs; the candle's preset asks for 80 (issue 40: params showed 0).
+  EXPECT_NE(line(defaults.out, "vpl.count").find(" 0 "), std::string::npos) << line(defaults.out, "vpl.count");
+  EXPECT_NE(line(candle.out, "vpl.count").find(" 80 "), std::string::npos) << line(candle.out, "vpl.count");
+  EXPECT_NE(candle.out.find("[candle]"), std::string::npos) << "the column names the preset";
+}
+
 TEST(Cli, AccumulateOutOfRangeIsRefused) {
   test::TempDir dir;
   const auto out = dir.path() / "out";
@@ -278,6 +318,9 @@ TEST(Cli, ViewWithoutADisplayCapturesIntoOut) {
   EXPECT_TRUE(stats["frames"][0]["gpu_ms"].contains("vpl")) << "the default preset lights the table with VPLs";
   EXPECT_EQ(stats["frames"][0]["time_s"], 16.0) << "the candle's start_s";
   EXPECT_EQ(stats["accumulate"], 16) << "a still frame: the maps accumulate as in a paused window";
+  // All 16: the first render of the melting candle's still reuses the maps' history and starts the
+  // still's count after it, so one render more is made (issue 40: 15 were recorded).
+  EXPECT_EQ(stats["frames"][0]["sss"]["frames_accumulated"], 16) << stats["frames"][0]["sss"].dump();
   // The flame is drawn (issue 16, point 5), and each pass has its CPU time beside its GPU time.
   const auto& frame = stats["frames"][0];
   EXPECT_TRUE(frame["gpu_ms"].contains("flame")) << frame["gpu_ms"].dump();

@@ -87,7 +87,7 @@ TEST(CompareJson, ErrorsOfKnownImages) {
   // Bad input: one line, non-zero, nothing written.
   r = runTallow({"compare", a.string(), b.string()});
   EXPECT_NE(r.exitCode, 0);
-  EXPECT_EQ(r.err, "tallow: compare: --out FIG.png or --json ERR.json is required\n");
+  EXPECT_EQ(r.err, "tallow: compare: --out FIG.png, --json ERR.json or a threshold (--max-rel-rmse) is required\n");
   gpu::Image none = halves(0.0f, 0.0f);
   for (auto& p : none.pixels) p.a = 0.0f;
   gpu::writeExr(dir.path() / "none.exr", none, gpu::ExrPixelType::Float, {});
@@ -96,6 +96,46 @@ TEST(CompareJson, ErrorsOfKnownImages) {
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("marks no pixel"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "h.json"));
+}
+
+TEST(CompareThreshold, AGoldenImageTestPassesWithinAndFailsPastTheThresholds) {
+  test::TempDir dir;
+  const fs::path a = dir.path() / "a.exr", b = dir.path() / "b.exr", spot = dir.path() / "spot.exr";
+  gpu::writeExr(b, halves(1.0f, 2.0f), gpu::ExrPixelType::Float, {});
+  gpu::writeExr(a, halves(1.1f, 1.8f), gpu::ExrPixelType::Float, {});  // exactly 10% (above)
+  // Identical files: exactly 0, no new firefly, exit 0 and one line on stdout.
+  auto r = runTallow({"compare", b.string(), b.string(), "--max-rel-rmse", "0"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("relative RMSE 0, 0 new fireflies"), std::string::npos) << r.out;
+  // 10% against a 0.11 limit passes, against 0.09 fails with exit 3 and one line naming both.
+  r = runTallow({"compare", a.string(), b.string(), "--max-rel-rmse", "0.11"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  r = runTallow({"compare", a.string(), b.string(), "--max-rel-rmse", "0.09", "--json", (dir.path() / "e.json").string()});
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_EQ(r.err, "tallow: compare: " + a.string() + " differs from " + b.string() +
+                       ": relative RMSE 0.1, 0 new fireflies (relative RMSE above --max-rel-rmse 0.09)\n");
+  EXPECT_TRUE(fs::exists(dir.path() / "e.json")) << "the JSON asked for is written for the CI's artefacts";
+  // A firefly that B lacks: counted as new (one), so --max-new-fireflies 0 fails and 1 passes;
+  // against itself it is not new.
+  gpu::Image withSpot = halves(1.0f, 2.0f);
+  withSpot.pixels[2 * 16 + 3] = glm::vec4(20.0f, 20.0f, 20.0f, 1.0f);
+  gpu::writeExr(spot, withSpot, gpu::ExrPixelType::Float, {});
+  r = runTallow({"compare", spot.string(), b.string(), "--max-new-fireflies", "0"});
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.err.find("1 new firefly (more new fireflies than --max-new-fireflies 0)"), std::string::npos) << r.err;
+  r = runTallow({"compare", spot.string(), b.string(), "--max-new-fireflies", "1"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  r = runTallow({"compare", spot.string(), spot.string(), "--max-new-fireflies", "0", "--json",
+                 (dir.path() / "s.json").string()});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  const json self = readJsonFile(dir.path() / "s.json")["error"];
+  EXPECT_EQ(self["fireflies"], 1);
+  EXPECT_EQ(self["new_fireflies"], 0);
+  // Bad thresholds: one line, before anything is read.
+  r = runTallow({"compare", a.string(), b.string(), "--max-rel-rmse", "-1"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err, "tallow: --max-rel-rmse: must be a finite fraction >= 0, e.g. 0.02\n");
 }
 
 }  // namespace

@@ -82,7 +82,10 @@ TEST(Hardening, MistypedCommandsAndOptionsGetTheClosestName) {
                 "capture: unknown option \"--frmaes\" (did you mean \"--frames\"?)", dir.path());
   expectCleanFailure(runTallow({"probe", "bssrdf", "--modle", "standard", "--in", "x.csv", "--out", out}),
                 "probe bssrdf: unknown option \"--modle\" (did you mean \"--model\"?)", dir.path());
-  expectCleanFailure(runTallow({"--preset", "slab"}), "unknown option \"--preset\" (options follow the command", dir.path());
+  // view is the default command (the README's synopsis): options without a command are view's.
+  expectCleanFailure(runTallow({"--preset", "slab", "--frmaes", "2"}),
+                     "view: unknown option \"--frmaes\" (did you mean \"--frames\"?)", dir.path());
+  expectCleanFailure(runTallow({"--preset", "slab", "--frames", "-1"}), "--frames: must not be negative", dir.path());
 }
 
 TEST(Hardening, AnEmptyPresetNameIsRefused) {
@@ -93,10 +96,12 @@ TEST(Hardening, AnEmptyPresetNameIsRefused) {
 
 TEST(Hardening, OutputsThatCannotBeWrittenAreRefusedBeforeRendering) {
   test::TempDir dir;
-  // A screenshot into a folder that does not exist: today's check walked up to "." and passed.
+  // A screenshot's folder is created as --out is (issue 40), but not under a file.
+  test::TempDir other;
+  const auto file = other.write("file", "");
   expectCleanFailure(runTallow({"view", "--preset", "slab", "--frames", "1", "--screenshot",
-                           (dir.path() / "missing" / "shot.png").string()}),
-                "--screenshot: folder " + (dir.path() / "missing").string() + " does not exist", dir.path());
+                                (file / "missing" / "shot.png").string()}),
+                     "--screenshot: " + file.string() + " is not a folder", dir.path());
   // A folder that cannot be created although its parent looks writable (root may write anywhere
   // by access(2), but not create in /proc): refused before the slow render, not after it.
   const auto start = std::chrono::steady_clock::now();

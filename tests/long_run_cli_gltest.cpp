@@ -341,7 +341,8 @@ TEST(CaptureReference, EachFrameIsComparedWithTheReferenceAndTheTranslucentChang
   gpu::writeExr(dir.path() / "doubled.exr", doubled, gpu::ExrPixelType::Float, {});
   gpu::writeExr(dir.path() / "doubled_stderr.exr", mask, gpu::ExrPixelType::Float, {});
 
-  r = withOut(dir.path() / "same", {"--reference", (dir.path() / "same.exr").string()});
+  // Float EXRs here too: a frame is compared as its EXR stores it (half floats by default).
+  r = withOut(dir.path() / "same", {"--exr-float", "--reference", (dir.path() / "same.exr").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   stats = readJson(dir.path() / "same" / "stats.json");
   const json& same = stats["frames"][1]["reference_error"];
@@ -351,7 +352,7 @@ TEST(CaptureReference, EachFrameIsComparedWithTheReferenceAndTheTranslucentChang
   EXPECT_NEAR(same["mean_ratio"].get<double>(), 1.0, 1e-6);
   EXPECT_GT(stats["frames"][0]["reference_error"]["rel_rmse"].get<double>(), 0.0) << "frame 1 has fewer frames";
 
-  r = withOut(dir.path() / "doubled", {"--reference", (dir.path() / "doubled.exr").string()});
+  r = withOut(dir.path() / "doubled", {"--exr-float", "--reference", (dir.path() / "doubled.exr").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const json doubledError = readJson(dir.path() / "doubled" / "stats.json")["frames"][1]["reference_error"];
   EXPECT_NEAR(doubledError["mean_ratio"].get<double>(), 0.5, 1e-6);

@@ -34,6 +34,17 @@ TEST(Playback, PauseHoldsAndPlayContinuesFromThere) {
   EXPECT_DOUBLE_EQ(clock.time(), 1.4);
 }
 
+TEST(Playback, ASlowFrameAdvancesTheClockByAtMostTheCap) {
+  // Issue 40: frames of 11.6 s took the candle from t = 12 s to its end in one frame.
+  EXPECT_DOUBLE_EQ(cappedStep(11.6, kDefaultMaxStepS), 1.0 / 30.0);
+  EXPECT_DOUBLE_EQ(cappedStep(0.01, kDefaultMaxStepS), 0.01);  // a fast machine follows wall time
+  EXPECT_DOUBLE_EQ(cappedStep(11.6, 0.0), 11.6);               // 0: no cap
+  EXPECT_DOUBLE_EQ(cappedStep(-0.5, kDefaultMaxStepS), 0.0);   // a clock that went back moves nothing
+  Playback clock(12.0, 20.0, false);
+  for (int i = 0; i < 10; ++i) clock.advance(cappedStep(11.6, 0.05));
+  EXPECT_NEAR(clock.time(), 12.5, 1e-12) << "ten slow frames at a 0.05 s cap play half a second";
+}
+
 TEST(Playback, SeekAndSpeedReanchorTheFrameCount) {
   Playback clock(0.0, 0.0, true);
   clock.setFrame(5, 10.0);

@@ -70,11 +70,12 @@ TEST(View, ThePictureLiesBesideThePanelPixelForPixel) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const json stats = readJson(dir.path() / "stats.json");
   const json view = stats["frames"].back()["view"];
-  // The window opens with the panel's 420 pixels beside the 320x240 image, 480 pixels tall (room
-  // for the panel); the image is shown at scale 1, centred in the viewport right of the panel.
-  EXPECT_EQ(view["window"], json({740, 480}));
-  EXPECT_EQ(view["panel"], json({0, 0, 420, 480}));
-  EXPECT_EQ(view["image"], json({420, 120, 320, 240}));
+  // The window opens with the panel's 420 pixels beside the 320x240 image, as tall as 95% of the
+  // 800x600 screen (570: room for the panel's parameters); the image is shown at scale 1, centred
+  // in the viewport right of the panel.
+  EXPECT_EQ(view["window"], json({740, 570}));
+  EXPECT_EQ(view["panel"], json({0, 0, 420, 570}));
+  EXPECT_EQ(view["image"], json({420, 165, 320, 240}));
   EXPECT_EQ(view["scale"], 1.0);
   for (const json& frame : stats["frames"]) {
     const json& p = frame["view"]["panel"];
@@ -84,7 +85,7 @@ TEST(View, ThePictureLiesBesideThePanelPixelForPixel) {
   }
   const gpu::Image png = gpu::readPng(dir.path() / "out.png");
   ASSERT_EQ(png.width, 740);
-  ASSERT_EQ(png.height, 480);
+  ASSERT_EQ(png.height, 570);
 
   // The image's place in the window shows the rendered image and nothing else: every pixel is the
   // tone-mapped radiance of the same frame (out.exr), up to the EXR's half floats and the GPU's
@@ -101,7 +102,7 @@ TEST(View, ThePictureLiesBesideThePanelPixelForPixel) {
     for (int x = 0; x < 320; ++x) {
       const std::size_t k = 3 * (static_cast<std::size_t>(y) * 320 + static_cast<std::size_t>(x));
       const glm::ivec3 want(expected[k], expected[k + 1], expected[k + 2]);
-      const int gap = maxChannelGap(byteAt(png, 420 + x, 120 + y), want);
+      const int gap = maxChannelGap(byteAt(png, 420 + x, 165 + y), want);
       worst = std::max(worst, gap);
       off += gap > 2;
     }
@@ -119,7 +120,7 @@ TEST(View, ThePictureLiesBesideThePanelPixelForPixel) {
                              << byteAt(png, 380, 8).y << "," << byteAt(png, 380, 8).z;
   // Its text: white glyphs (ImGuiCol_Text is (1, 1, 1)) in the panel.
   int white = 0;
-  for (int y = 30; y < 480; ++y)
+  for (int y = 30; y < 570; ++y)
     for (int x = 0; x < 420; ++x) {
       const glm::ivec3 c = byteAt(png, x, y);
       white += c.x >= 250 && c.y >= 250 && c.z >= 250;
@@ -175,18 +176,19 @@ TEST(View, HotkeysAsScriptEvents) {
   ASSERT_TRUE(frames[6]["changed"].contains("camera.position"));
   ASSERT_TRUE(frames[7]["changed"].contains("camera.position"));
   EXPECT_EQ(frames[7]["changed"]["camera.position"], before);
-  // F1: no panel, the 320x240 image enlarged twice into the 740x480 window, centred.
+  // F1: no panel, the 320x240 image enlarged 740/320 = 2.3125 times to fill the 740x570 window's
+  // width (555 rows), centred.
   for (int i = 8; i < 11; ++i) {
     EXPECT_FALSE(frames[i]["view"]["panel_visible"].get<bool>()) << "frame " << i;
     EXPECT_TRUE(frames[i]["view"]["panel"].is_null());
-    EXPECT_EQ(frames[i]["view"]["image"], json({50, 0, 640, 480})) << "frame " << i;
+    EXPECT_EQ(frames[i]["view"]["image"], json({0, 7, 740, 555})) << "frame " << i;
   }
-  EXPECT_EQ(frames[11]["view"]["panel"], json({0, 0, 420, 480}));
+  EXPECT_EQ(frames[11]["view"]["panel"], json({0, 0, 420, 570}));
   // S twice: two numbered files, neither overwriting the other.
   const gpu::Image first = gpu::readPng(dir.path() / "tallow-blob-0001.png");
   const gpu::Image second = gpu::readPng(dir.path() / "tallow-blob-0002.png");
   EXPECT_EQ(first.width, 740);
-  EXPECT_EQ(second.height, 480);
+  EXPECT_EQ(second.height, 570);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "tallow-blob-0003.png"));
 }
 
@@ -219,6 +221,84 @@ TEST(View, KeyTapsAreNotLostAtALowFrameRate) {
     pauses += frames[i - 1]["view"]["playing"].get<bool>() && !frames[i]["view"]["playing"].get<bool>();
   EXPECT_LE(pauses, 1);
 #endif
+}
+
+TEST(View, ASlowWindowPlaysSlowerInsteadOfSkipping) {
+  // Issue 40, point 1: by wall time, frames of seconds on llvmpipe took the candle through its
+  // animation in a few frames (0.97 s apart); the clock now moves at most --max-step a frame.
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  const auto r = test::runUnderXvfb(tallowLine({"view", "--preset", "candle", "--frames", "4", "--stats", "stats.json",
+                                                "--max-step", "0.05"}),
+                                    dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json frames = readJson(dir.path() / "stats.json")["frames"];
+  ASSERT_EQ(frames.size(), 4u);
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    const double step = frames[i]["time_s"].get<double>() - frames[i - 1]["time_s"].get<double>();
+    const double wallS = frames[i - 1]["wall_ms"].get<double>() / 1000.0;
+    EXPECT_GT(step, 0.0) << "frame " << i << ": the clock plays";
+    EXPECT_LE(step, 0.05 + 1e-9) << "frame " << i;
+    // Frames longer than the cap: the panel's "behind real time" share is the step over the frame's time.
+    if (wallS > 0.06) {
+      EXPECT_LT(frames[i]["view"]["real_time_share"].get<double>(), 1.0) << "frame " << i;
+    }
+  }
+}
+
+TEST(View, ScriptScreenshotsShowTheSceneWhereTheScriptStands) {
+  // Issue 40, point 5: a screenshot between two commands of one frame shows the first applied and
+  // not the second (it used to be taken after every command of its frame), into a folder made for it.
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  dir.write("shots.txt",
+            "frame 1 set sss.maps=2\n"
+            "frame 1 screenshot shots/k2.exr\n"
+            "frame 1 set sss.maps=3\n"
+            "frame 1 screenshot shots/deeper/k3.exr\n"
+            "frame 2 set sss.maps=5\n");
+  const auto r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--fps", "10", "--frames", "4", "--script",
+                                                "shots.txt", "--stats", "stats.json"}),
+                                    dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json frames = readJson(dir.path() / "stats.json")["frames"];
+  // Frame 1 is drawn twice at the same time: K = 2 for the first screenshot, then K = 3.
+  ASSERT_EQ(frames.size(), 5u);
+  const int maps[] = {4, 2, 3, 5, 5};
+  const int index[] = {0, 1, 1, 2, 3};
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(frames[i]["sss"]["maps"], maps[i]) << "record " << i;
+    EXPECT_EQ(frames[i]["index"], index[i]) << "record " << i;
+    EXPECT_EQ(frames[i]["view"]["script_step"], i == 2) << "record " << i;
+  }
+  EXPECT_EQ(frames[2]["time_s"], frames[1]["time_s"]) << "the clock holds for the rest of the frame's script";
+  EXPECT_NEAR(frames[3]["time_s"].get<double>(), 0.2, 1e-9);
+  // The two pictures differ (K = 2 and K = 3 cover the blob differently), each one whole file.
+  const gpu::Image k2 = gpu::readExr(dir.path() / "shots" / "k2.exr");
+  const gpu::Image k3 = gpu::readExr(dir.path() / "shots" / "deeper" / "k3.exr");
+  ASSERT_EQ(k2.pixels.size(), k3.pixels.size());
+  EXPECT_NE(k2.pixels, k3.pixels);
+}
+
+TEST(View, ImpossibleDebugViewsEndWithOneLine) {
+  // Issue 40, point 5: map:99 of 4 maps showed the final image and exited 0.
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  auto r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--frames", "2", "--debug-view", "map:99"}) +
+                                  " 2>err.txt",
+                              dir.path());
+  EXPECT_NE(r.exitCode, 0);
+  std::ifstream err(dir.path() / "err.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "tallow: --debug-view map:99: map 99 does not exist (K = 4)\n");
+  dir.write("debug.txt", "frame 1 debug map:2\nframe 2 debug map:7\n");
+  r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--frames", "4", "--script", "debug.txt"}) +
+                             " 2>err2.txt",
+                         dir.path());
+  EXPECT_NE(r.exitCode, 0);
+  std::ifstream err2(dir.path() / "err2.txt");
+  const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text2, "tallow: debug.txt:2:9: debug: map 7 does not exist (K = 4)\n");
 }
 
 TEST(View, UndoRestoresTheExactPresetAndRedoReappliesTheEdit) {
@@ -355,8 +435,17 @@ TEST(View, BadInputsFailWithOneLineBeforeAWindowOpens) {
                      "--screenshot: expected a .png or .exr file", dir, inputs);
   expectCleanFailure(runTallow({"view", "--debug-view", "mpa"}, noDisplay), "--debug-view: unknown debug view \"mpa\"",
                      dir, inputs);
-  expectCleanFailure(runTallow({"view", "--size", "64x36", "--screenshot", p("a.png")}, noDisplay),
+  expectCleanFailure(runTallow({"view", "--size", "64x36", "--frames", "1", "--screenshot", p("a.png")}, noDisplay),
                      "no display: --screenshot needs the window", dir, inputs);
+  // Issue 40: mistakes that would not end, or end silently.
+  expectCleanFailure(runTallow({"view", "--screenshot", p("a.png")}, noDisplay),
+                     "--screenshot: saved after the last frame, so it needs --frames N", dir, inputs);
+  expectCleanFailure(runTallow({"view", "--save-preset", p("a.json")}, noDisplay),
+                     "--save-preset: saved after the last frame, so it needs --frames N", dir, inputs);
+  expectCleanFailure(runTallow({"view", "--debug-view", "difference"}, noDisplay),
+                     "--debug-view difference: the difference view needs --reference REF.exr", dir, inputs);
+  expectCleanFailure(runTallow({"view", "--max-step", "-1"}, noDisplay), "--max-step: must be in [0, 60] seconds", dir,
+                     inputs);
   // A reference of another size than the image.
   gpu::writeExr(dir.path() / "small.exr", gpu::Image(8, 8), gpu::ExrPixelType::Half);
   expectCleanFailure(runTallow({"view", "--size", "64x36", "--reference", p("small.exr")}, noDisplay),
@@ -374,6 +463,10 @@ TEST(View, BadInputsFailWithOneLineBeforeAWindowOpens) {
                      "--video: " + p("v.avi") + ": unknown video container", dir, more);
   expectCleanFailure(runTallow({"capture", "--video", p("v.mp4"), "--out", p("o")}, {"TALLOW_FFMPEG=/nonexistent"}),
                      "--video: ffmpeg is not installed", dir, more);
+  dir.write("diff.txt", "frame 2 debug difference\n");
+  expectCleanFailure(runTallow({"view", "--script", p("diff.txt")}, noDisplay),
+                     p("diff.txt") + ":1:9: debug: the difference view needs --reference", dir,
+                     {"bad.txt", "diff.txt", "late.txt", "ref.exr", "shot.txt", "small.exr"});
 }
 
 TEST(Capture, ScriptChangesAreRecordedPerFrame) {

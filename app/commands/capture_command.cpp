@@ -201,7 +201,8 @@ int runCapture(const CaptureOptions& options) {
   // against the reference at t_k), read and checked before any work.
   std::optional<ReferenceImages> reference;
   if (!options.reference.empty())
-    reference = readReferencePair(options.reference, config.render.width, config.render.height, "the capture");
+    reference = readReferencePair(options.reference, config.render.width, config.render.height, "the capture",
+                                  "--reference", /*plainAllowed=*/true);
 
   // The folder is this run's from here on: a second run into it refuses (output_folder.h).
   OutputFolder folder(out, "capture");
@@ -233,7 +234,9 @@ int runCapture(const CaptureOptions& options) {
   // stats.frames.jsonl), so memory does not grow with --frames and a stopped run keeps every frame it
   // finished. Only the frame before is kept, for the receivers' frame-to-frame change.
   const InterruptScope interruptScope;
-  Progress progress("capture", "frame", options.frames);
+  // Counted in renders with --accumulate (a frame of 16 renders of the candle takes half a minute).
+  const int rendersPerFrame = options.accumulate;
+  Progress progress("capture", rendersPerFrame > 1 ? "render" : "frame", options.frames * rendersPerFrame);
   std::unique_ptr<VideoEncoder> video;
   std::optional<gpu::Image> previous;
   StatsWriter stats(out / "stats.json");
@@ -275,8 +278,11 @@ int runCapture(const CaptureOptions& options) {
       if (any(masks.receivers)) frame.receiverChange = gpu::relativeChange(image, *previous, masks.receivers);
       if (any(masks.translucent)) frame.translucentChange = gpu::relativeChange(image, *previous, masks.translucent);
     }
+    const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
     if (reference) {
-      frame.reference = referenceErrorRecord(image, reference->radiance, reference->standardError);
+      // The frame as its EXR stores it: a capture compared with its own stored frame differs by 0.
+      frame.reference = referenceErrorRecord(gpu::storedAsExr(image, asked), reference->radiance, reference->standardError);
+      frame.reference["compared"] = reference->plain ? "all pixels" : "object pixels";
       if (frame.reference["rel_rmse"].is_null() && frame.reference["non_finite"]["image"].get<std::size_t>() > 0) {
         ++undefinedErrors;
         std::fprintf(stderr, "tallow: frame %d: its error against %s is undefined (NaN or infinite pixels)\n", i,
@@ -290,7 +296,6 @@ int runCapture(const CaptureOptions& options) {
     // render.local_exposure's adaptation included); the EXR keeps the radiance.
     const gpu::Image& picture = shownSeparate ? images[1] : image;
     gpu::writePng(out / frameName(i, "png"), picture, toneMap);
-    const gpu::ExrPixelType asked = options.exrFloat ? gpu::ExrPixelType::Float : gpu::ExrPixelType::Half;
     if (gpu::writeExr(out / frameName(i, "exr"), image, asked,
                       {{"tallow.preset", loaded.presetName}, {"tallow.renderer", run.gl.renderer}}) != asked)
       std::fprintf(stderr,
@@ -305,7 +310,7 @@ int runCapture(const CaptureOptions& options) {
     previous = std::move(image);
     if (i + 1 == options.frames) run.state = "complete";
     stats.append(run, frame);
-    progress.update(i + 1);
+    progress.update((i + 1) * rendersPerFrame);
   };
   FrameWriter writer;
   const auto complete = [&](InFlight& f, std::chrono::steady_clock::time_point end) {
@@ -341,15 +346,31 @@ int runCapture(const CaptureOptions& options) {
       try {
         // With --accumulate N the frame's time is rendered N times (a paused window's progressive
         // accumulation); its GPU timings are the sums over those renders, like its wall time.
+        const auto rendered = [&](int a) {
+          if (rendersPerFrame > 1)
+            progress.update(i * rendersPerFrame + std::min(a, rendersPerFrame),
+                            options.frames > 1 ? "frame " + std::to_string(i + 1) + " of " + std::to_string(options.frames) : "");
+        };
+        // The maps' frames accumulated (RadiosityMaps::frames), or N where the method has none.
+        const auto mapFrames = [&] {
+          const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>();
+          return maps && sss::RadiosityMaps::applies(config.scene, config.render) ? maps->frames() : options.accumulate;
+        };
         const auto renderFrame = [&] {
           frame.gpu = renderer.render(config.scene, config.render, frame.timeS);
-          for (int a = 1; a < options.accumulate; ++a) {
+          rendered(1);
+          // A still after motion starts its count with the render after the one that reused the maps'
+          // history (RadiosityMaps::renderMaps): one render more then, so that N frames are accumulated.
+          for (int a = 1; a < options.accumulate || (a == options.accumulate && options.accumulate > 1 &&
+                                                     mapFrames() < options.accumulate);
+               ++a) {
             // The GPU times of the renders so far are read before the sum is taken (a wait, as the
             // accumulated frame is timed whole).
             renderer.resolveTimings(frame.gpu);
             sss::FrameTimings more = renderer.render(config.scene, config.render, frame.timeS);
             renderer.resolveTimings(more);
             addTimings(frame.gpu, more);
+            rendered(a + 1);
           }
         };
         renderFrame();

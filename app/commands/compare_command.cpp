@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "app/commands/capture_command.h"
@@ -11,6 +12,7 @@
 #include "app/commands/gnuplot.h"
 #include "app/commands/option_checks.h"
 #include "app/config/input_error.h"
+#include "app/config/registry.h"
 #include "gpu/atomic_file.h"
 #include "gpu/image_error.h"
 #include "gpu/image_io.h"
@@ -29,10 +31,61 @@ gpu::Image readInput(const std::string& file, const std::string& option = "") {
 
 std::string sizeText(const gpu::Image& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
 
+
+/// A file's caption by default: its folder and name ("golden/frame_0000.exr"), since two captures'
+/// frames have the same name.
+std::string defaultCaption(const std::string& file) {
+  const std::filesystem::path p(file);
+  const std::filesystem::path folder = p.parent_path().filename();
+  return folder.empty() ? p.filename().string() : (folder / p.filename()).string();
+}
+
+void writeFigure(const CompareOptions& o, const gpu::Image& a, const gpu::Image& b, const gpu::Image* mask) {
+  FigureSpec spec;
+  spec.title = o.title;
+  spec.toneMap.exposureEv = static_cast<float>(o.exposureEv);
+  spec.mask = mask;
+  spec.scale = o.scale;
+  const auto caption = [&](std::size_t i, const std::string& file) {
+    return i < o.captions.size() ? o.captions[i] : defaultCaption(file);
+  };
+  spec.images = {{&a, caption(0, o.a)}, {&b, caption(1, o.b)}};
+  // Short, whatever the captions: the panel is one picture wide.
+  spec.differences = {{&a, &b, "|left − right|", 1}};
+  spec.scaleLabel = "|Δ| / RMS of the right picture";
+  writeComparisonFigure(std::filesystem::path(o.out), spec);
+  std::printf("tallow: wrote %s\n", o.out.c_str());
+}
+
+/// The golden-image test: one line, on stdout within the thresholds, on stderr past them.
+int testThresholds(const CompareOptions& o, const nlohmann::json& error) {
+  const double relRmse = error["rel_rmse"].is_number() ? error["rel_rmse"].get<double>()
+                                                       : std::numeric_limits<double>::infinity();
+  const auto newFireflies = error["new_fireflies"].get<long long>();
+  char figures[160];
+  std::snprintf(figures, sizeof figures, "relative RMSE %.4g, %lld new firefl%s", relRmse, newFireflies,
+                newFireflies == 1 ? "y" : "ies");
+  std::string past;
+  if (o.maxRelRmse && !(relRmse <= *o.maxRelRmse)) past = "relative RMSE above --max-rel-rmse " + formatNumber(*o.maxRelRmse);
+  else if (o.maxNewFireflies && newFireflies > *o.maxNewFireflies)
+    past = "more new fireflies than --max-new-fireflies " + std::to_string(*o.maxNewFireflies);
+  if (!past.empty()) {
+    std::fprintf(stderr, "tallow: compare: %s differs from %s: %s (%s)\n", o.a.c_str(), o.b.c_str(), figures, past.c_str());
+    return kImagesDiffer;
+  }
+  std::printf("tallow: compare: %s matches %s within the thresholds: %s\n", o.a.c_str(), o.b.c_str(), figures);
+  return 0;
+}
+
 }  // namespace
 
 int runCompare(const CompareOptions& o) {
-  if (o.out.empty() && o.json.empty()) throw InputError("compare: --out FIG.png or --json ERR.json is required");
+  const bool tested = o.maxRelRmse || o.maxNewFireflies;
+  if (o.out.empty() && o.json.empty() && !tested)
+    throw InputError("compare: --out FIG.png, --json ERR.json or a threshold (--max-rel-rmse) is required");
+  if (o.maxRelRmse && !(*o.maxRelRmse >= 0.0 && std::isfinite(*o.maxRelRmse)))
+    throw InputError("--max-rel-rmse: must be a finite fraction >= 0, e.g. 0.02");
+  if (o.maxNewFireflies && *o.maxNewFireflies < 0) throw InputError("--max-new-fireflies: must be >= 0");
   if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
     throw InputError("--out: expected a .png file, got \"" + o.out + "\"");
   if (!o.json.empty()) checkOutputFile("--json", o.json, {".json"});
@@ -71,30 +124,15 @@ int runCompare(const CompareOptions& o) {
   }
   gpu::ImageErrorOptions errorOptions;
   errorOptions.skipNonFinite = o.ignoreNonFinite;
+  const nlohmann::json error = referenceErrorRecord(a, b, pixels, errorOptions);
   if (!o.json.empty()) {
     const nlohmann::json record{{"a", o.a}, {"b", o.b}, {"mask", o.mask.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.mask)},
-                                {"error", referenceErrorRecord(a, b, pixels, errorOptions)}};
+                                {"error", error}};
     gpu::writeTextFileAtomically(o.json, record.dump(2) + "\n");
     std::printf("tallow: wrote %s\n", o.json.c_str());
   }
-  if (o.out.empty()) return 0;
-  const std::filesystem::path out(o.out);
-
-  FigureSpec spec;
-  spec.title = o.title;
-  spec.toneMap.exposureEv = static_cast<float>(o.exposureEv);
-  spec.mask = mask ? &*mask : nullptr;
-  spec.scale = o.scale;
-  const auto caption = [&](std::size_t i, const std::string& file) {
-    return i < o.captions.size() ? o.captions[i] : std::filesystem::path(file).filename().string();
-  };
-  spec.images = {{&a, caption(0, o.a)}, {&b, caption(1, o.b)}};
-  // Short, whatever the captions: the panel is one picture wide.
-  spec.differences = {{&a, &b, "|left − right|", 1}};
-  spec.scaleLabel = "|Δ| / RMS of the right picture";
-  writeComparisonFigure(out, spec);
-  std::printf("tallow: wrote %s\n", o.out.c_str());
-  return 0;
+  if (!o.out.empty()) writeFigure(o, a, b, mask ? &*mask : nullptr);
+  return tested ? testThresholds(o, error) : 0;
 }
 
 }  // namespace tallow::app

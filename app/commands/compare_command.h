@@ -5,6 +5,7 @@
 // (docs/RESULTS.md). Needs gnuplot. `--json ERR.json` writes A's error against B over the mask as
 // capture's per-frame "reference_error" has it (app/commands/frame_stats.h), e.g. for frames that
 // another build rendered (scripts/results_animated.py).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,10 +23,18 @@ struct CompareOptions {
   /// --ignore-non-finite: leave out the compared pixels where A or B is NaN or infinite (counted and
   /// printed); without it such pixels make the comparison fail (the error is undefined).
   bool ignoreNonFinite = false;
+  /// A test's thresholds (issue 40): past either, runCompare says so in one line on stderr and
+  /// returns kImagesDiffer (the figure and the JSON asked for are still written, for the CI's
+  /// artefacts). Within them it prints one line on stdout. Unset: no test.
+  std::optional<double> maxRelRmse;
+  std::optional<long long> maxNewFireflies;
 };
 
-/// Returns the exit code; throws InputError with one line on bad input (unreadable or mismatched
-/// images, neither --out nor --json, gnuplot missing for --out, a bad --scale, a mask with no
+/// runCompare's exit code when A is past a threshold (1 is bad input, 2 a mistyped command line).
+inline constexpr int kImagesDiffer = 3;
+
+/// Returns the exit code (0, or kImagesDiffer); throws InputError with one line on bad input
+/// (unreadable or mismatched images, none of --out, --json or a threshold, a negative threshold, gnuplot missing for --out, a bad --scale, a mask with no
 /// pixel, NaN or infinite pixels compared without --ignore-non-finite), std::runtime_error when
 /// gnuplot fails. Nothing is written on a failure.
 int runCompare(const CompareOptions& options);

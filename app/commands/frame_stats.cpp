@@ -72,13 +72,23 @@ nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json
 /// with how near the reference's own pixel came to the threshold: what tells a speckle of noise (the
 /// reference near its median there) from a feature at the threshold that a small bias tips over.
 constexpr std::size_t kListedFireflies = 32;
+/// Whether the reference has a firefly at f's pixel too.
+bool sharedFirefly(const gpu::Firefly& f, const std::vector<gpu::Firefly>& theirs) {
+  return std::any_of(theirs.begin(), theirs.end(), [&](const gpu::Firefly& r) { return r.x == f.x && r.y == f.y; });
+}
+
+/// The image's fireflies at pixels where the reference has none (all of them; the list is capped).
+std::size_t newFireflyCount(const std::vector<gpu::Firefly>& ours, const std::vector<gpu::Firefly>& theirs) {
+  return static_cast<std::size_t>(
+      std::count_if(ours.begin(), ours.end(), [&](const gpu::Firefly& f) { return !sharedFirefly(f, theirs); }));
+}
+
 nlohmann::json firefliesNotInReference(const std::vector<gpu::Firefly>& ours, const std::vector<gpu::Firefly>& theirs,
                                        const gpu::Image& image, const gpu::Image& reference, const gpu::Image& mask) {
   nlohmann::json list = nlohmann::json::array();
   for (const gpu::Firefly& f : ours) {
     if (list.size() == kListedFireflies) break;
-    const bool shared = std::any_of(theirs.begin(), theirs.end(), [&](const gpu::Firefly& r) { return r.x == f.x && r.y == f.y; });
-    if (shared) continue;
+    if (sharedFirefly(f, theirs)) continue;
     const float value = image.at(f.x, f.y)[f.channel], ref = reference.at(f.x, f.y)[f.channel];
     list.push_back({{"x", f.x}, {"y", f.y}, {"channel", f.channel}, {"over_median", finiteOrNull(f.overMedian)},
                     {"reference_over_median", finiteOrNull(gpu::fireflyRatio(reference, mask, f.x, f.y, f.channel))},
@@ -102,6 +112,7 @@ nlohmann::json referenceErrorRecord(const gpu::Image& image, const gpu::Image& r
           {"non_finite", {{"image", e.nonFiniteImage}, {"reference", e.nonFiniteReference}, {"left_out", e.skippedNonFinite}}},
           {"fireflies", ours.size()},
           {"reference_fireflies", theirs.size()},
+          {"new_fireflies", newFireflyCount(ours, theirs)},
           {"fireflies_not_in_reference", firefliesNotInReference(ours, theirs, image, reference, standardError)},
           {"pixels", e.pixels}};
 }

@@ -114,7 +114,9 @@ void checkWritableFolder(const fs::path& dir, std::string_view option) {
   if (!why.empty()) throw InputError(opt + ": cannot write to " + dir.string() + ": " + why);
 }
 
-void checkOutputFile(std::string_view option, const fs::path& file, const std::vector<std::string>& extensions) {
+namespace {
+/// checkOutputFile's checks of the name: not empty, writable as a name, one of `extensions`, not a folder.
+void checkOutputFileName(std::string_view option, const fs::path& file, const std::vector<std::string>& extensions) {
   const std::string opt(option);
   if (file.empty()) throw InputError(opt + ": empty file name");
   checkOutputName(option, file);
@@ -127,11 +129,23 @@ void checkOutputFile(std::string_view option, const fs::path& file, const std::v
   }
   std::error_code ec;
   if (fs::is_directory(file, ec)) throw InputError(opt + ": " + file.string() + " is a folder");
+}
+}  // namespace
+
+void checkOutputFile(std::string_view option, const fs::path& file, const std::vector<std::string>& extensions) {
+  checkOutputFileName(option, file, extensions);
+  const std::string opt(option);
+  std::error_code ec;
   const fs::path folder = folderOf(file);
   if (!fs::exists(folder, ec)) throw InputError(opt + ": folder " + folder.string() + " does not exist");
   if (!fs::is_directory(folder, ec)) throw InputError(opt + ": " + folder.string() + " is not a folder");
   const std::string why = tryWrite(folder);
   if (!why.empty()) throw InputError(opt + ": cannot write to folder " + folder.string() + ": " + why);
+}
+
+void checkOutputFileInNewFolder(std::string_view option, const fs::path& file, const std::vector<std::string>& extensions) {
+  checkOutputFileName(option, file, extensions);
+  checkWritableFolder(folderOf(file), option);
 }
 
 void checkMethods(const Registry& registry, const std::vector<std::string>& methods) {

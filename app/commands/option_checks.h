@@ -42,6 +42,11 @@ void checkWritableFolder(const std::filesystem::path& dir, std::string_view opti
 void checkOutputFile(std::string_view option, const std::filesystem::path& file,
                      const std::vector<std::string>& extensions = {});
 
+/// checkOutputFile for a file whose folder is created when it is written, as --out's (view's
+/// screenshots): the folder is checked as checkWritableFolder checks --out.
+void checkOutputFileInNewFolder(std::string_view option, const std::filesystem::path& file,
+                                const std::vector<std::string>& extensions = {});
+
 /// bench --methods: each a value of the registry's `method`, refused as
 /// `--methods: unknown method "radiosity-map" (did you mean "radiosity-maps"?)`.
 void checkMethods(const Registry& registry, const std::vector<std::string>& methods);

@@ -146,6 +146,8 @@ void Progress::draw(double now) {
 }
 
 void Progress::update(int done, const std::string& detail) {
+  const std::lock_guard lock(mutex_);
+  if (done < done_) return;
   done_ = done;
   detail_ = detail;
   const double now = clock_();
@@ -156,6 +158,7 @@ void Progress::update(int done, const std::string& detail) {
 }
 
 void Progress::print(const std::string& line, std::FILE* stream) {
+  const std::lock_guard lock(mutex_);
   const bool redraw = barShown_;
   if (barShown_) {
     std::fputs("\r\033[K", out_);
@@ -168,6 +171,7 @@ void Progress::print(const std::string& line, std::FILE* stream) {
 }
 
 void Progress::finish() {
+  const std::lock_guard lock(mutex_);
   if (!barShown_) return;
   std::fputs("\r\033[K", out_);
   std::fflush(out_);

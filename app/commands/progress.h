@@ -6,6 +6,7 @@
 // the choice (scripts that log a terminal session, tests).
 #include <cstdio>
 #include <functional>
+#include <mutex>
 #include <string>
 
 namespace tallow::app {
@@ -47,8 +48,12 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   /// Changes the number of steps (an estimate that improves as the task runs).
-  void setTotal(int total) { total_ = total; }
-  /// Reports `done` steps finished: redraws the bar (at most 10 times a second, and at the last
+  void setTotal(int total) {
+    const std::lock_guard lock(mutex_);
+    total_ = total;
+  }
+  /// Reports `done` steps finished (never fewer than reported before: capture's render thread and
+  /// its writer's thread both report, the writer a step behind; each call is safe from any thread): redraws the bar (at most 10 times a second, and at the last
   /// step), or prints a line when a second has passed since the last one (or since the start).
   void update(int done, const std::string& detail = "");
   /// Prints a line of the task's own (a finished row, a warning) without tearing the bar.
@@ -68,6 +73,7 @@ class Progress {
   Clock clock_;
   double start_ = 0.0, last_ = 0.0;
   bool barShown_ = false;
+  std::mutex mutex_;  ///< update, print and finish from several threads
 };
 
 }  // namespace tallow::app

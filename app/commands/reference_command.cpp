@@ -128,7 +128,14 @@ gpu::Image readReferenceImage(const std::filesystem::path& file, int width, int 
 }
 
 ReferenceImages readReferencePair(const std::filesystem::path& file, int width, int height, const std::string& what,
-                                  const std::string& option) {
+                                  const std::string& option, bool plainAllowed) {
+  std::error_code ec;
+  if (plainAllowed && std::filesystem::is_regular_file(file, ec) &&
+      !std::filesystem::exists(standardErrorPath(file), ec)) {
+    ReferenceImages plain{readReferenceImage(file, width, height, what, option), gpu::Image(width, height), true};
+    for (glm::vec4& p : plain.standardError.pixels) p = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    return plain;
+  }
   return {readReferenceImage(file, width, height, what, option),
           readReferenceImage(standardErrorPath(file), width, height, what, option)};
 }

@@ -62,12 +62,15 @@ gpu::Image readReferenceImage(const std::filesystem::path& file, int width, int 
                               const std::string& option = "--reference");
 
 /// REF.exr and REF_stderr.exr (whose alpha marks the object pixels compared), checked against the
-/// size `what` renders: throws InputError naming the file and both sizes when they differ.
+/// size `what` renders: throws InputError naming the file and both sizes when they differ. With
+/// `plainAllowed`, a REF.exr without REF_stderr.exr beside it (a stored capture as a golden image)
+/// is read alone: every pixel compared (standardError then has alpha 1 and colour 0 everywhere).
 struct ReferenceImages {
   gpu::Image radiance, standardError;
+  bool plain = false;  ///< no REF_stderr.exr: every pixel is compared
 };
 ReferenceImages readReferencePair(const std::filesystem::path& file, int width, int height, const std::string& what,
-                                  const std::string& option = "--reference");
+                                  const std::string& option = "--reference", bool plainAllowed = false);
 
 /// The option that turns the emergent light on, with its default emitter count: `--emergent{N}`
 /// (CLI11's flag-with-value syntax: `--emergent` gives N, `--emergent=M` gives M).

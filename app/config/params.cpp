@@ -70,6 +70,13 @@ Param bindIntOrAuto(Param p, double offValue, Field field) {
   return p;
 }
 
+/// An int whose frame cost grows as value^power in the passes it feeds (the panel's hint while it is
+/// dragged: issue 40's sss.samples nudged from 8 to 147 made a frame 18 times longer, unannounced).
+Param withCost(Param p, int power) {
+  p.costPower = power;
+  return p;
+}
+
 Param withDefault(Param p, json value) {
   p.defaultValue = std::move(value);
   return p;
@@ -279,10 +286,10 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     p.setter = [](Config& c, const json& v) { c.scene.flameFlicker = v.get<float>(); };
     r.add(std::move(p));
   }
-  r.add(bind<int>(withDefault(declare("field.res", "int", "samples per axis",
+  r.add(bind<int>(withCost(withDefault(declare("field.res", "int", "samples per axis",
                                       "Lattice resolution of field objects, isosurfaced on the GPU every frame.", 16,
                                       512),
-                              64),
+                              64), 3),
                   [](auto& c) -> auto& { return c.render.fieldRes; }));
   {
     Param p = withDefault(
@@ -375,34 +382,34 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
     p.setter = [](Config& c, const json& v) { c.render.sss.model = sss::parseBssrdfModel(v.get<std::string>()); };
     r.add(std::move(p));
   }
-  r.add(bindIntOrAuto(withDefault(declare("sss.maps", "int", "maps",
+  r.add(bindIntOrAuto(withCost(withDefault(declare("sss.maps", "int", "maps",
                                       "K: scattered radiosity maps, from Halton directions on the bounding sphere (the "
                                       "paper uses 16 for simple shapes, 28 for the candle, 31 for the dragon); auto: "
                                       "the fewest of them that see all but 0.1% of the translucent pixels and VPLs "
                                       "that more maps would see, measured every frame (at most 32, 16 at first; "
                                       "docs/radiosity-maps.md). The GPU's array-layer and memory limits are checked "
                                       "when the renderer starts.", 1, 256),
-                              "auto"),
+                              "auto"), 1),
                       16, [](auto& c) -> auto& { return c.render.sss.maps; }));
-  r.add(bind<int>(withDefault(declare("sss.samples", "int", "samples",
+  r.add(bind<int>(withCost(withDefault(declare("sss.samples", "int", "samples",
                                       "N: samples per map texel, frame and colour band of the estimator (Eq. 9).", 1,
                                       4096),
-                              8),
+                              8), 1),
                   [](auto& c) -> auto& { return c.render.sss.samples; }));
-  r.add(bindIntOrAuto(withDefault(declare("sss.map_size", "int", "texels",
+  r.add(bindIntOrAuto(withCost(withDefault(declare("sss.map_size", "int", "texels",
                                           "Edge of each scattered radiosity map; auto: a texel no wider than half a "
                                           "pixel of the objects on screen (asking at most 512) nor than the shortest "
                                           "1/sigma_tr, as a power of two in [128, 2048], chosen when the maps restart "
                                           "(docs/radiosity-maps.md).",
                                           16, 8192),
-                                  "auto"),
+                                  "auto"), 2),
                       512, [](auto& c) -> auto& { return c.render.sss.mapSize; }));
-  r.add(bindIntOrAuto(withDefault(declare("sss.light_map_size", "int", "texels",
+  r.add(bindIntOrAuto(withCost(withDefault(declare("sss.light_map_size", "int", "texels",
                                           "Edge of each light's G-buffer (a cube face for point lights); auto: a "
                                           "texel of a quarter of the shortest 1/sigma_tr over the objects' bounding "
                                           "sphere, as a power of two in [512, 4096] (point lights: 1024).",
                                           16, 8192),
-                                  "auto"),
+                                  "auto"), 2),
                       512, [](auto& c) -> auto& { return c.render.sss.lightMapSize; }));
   r.add(bind<float>(withDefault(declare("sss.bias", "float", "× radius",
                                         "ε_bias: depth offset of the radiosity maps' visibility test (Algorithm 1), in "
@@ -541,11 +548,11 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
   }
 
   // --- Emergent light by virtual point lights (issue 7; the paper's §3.4, docs/vpl.md) -----------
-  r.add(bind<int>(withDefault(declare("vpl.count", "int", "VPLs",
+  r.add(bind<int>(withCost(withDefault(declare("vpl.count", "int", "VPLs",
                                       "N_vpl: virtual point lights on the translucent objects' outermost surface that "
                                       "light the opaque receivers (Eqs. 15-16; the paper uses 50-200); 0: none. Needs "
                                       "method radiosity-maps.", 0, sss::kMaxVpls),
-                              0),
+                              0), 1),
                   [](auto& c) -> auto& { return c.render.vpl.count; }));
   r.add(bind<int>(withDefault(declare("vpl.cube_size", "int", "texels",
                                       "Face of the cube map of the outermost surface from which the VPLs are read.", 8,

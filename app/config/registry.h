@@ -28,6 +28,9 @@ class Registry {
     bool acceptsAuto = false;
     /// With acceptsAuto: the number the view's panel sets when its auto checkbox is cleared.
     double autoOffValue = 0.0;
+    /// int only: a frame's work in the passes it feeds grows as value^costPower (the view panel's
+    /// hint while the value is dragged); 0: no such law.
+    int costPower = 0;
     /// Absent for scene-bound parameters, whose value comes from the preset.
     std::optional<nlohmann::json> defaultValue;
 

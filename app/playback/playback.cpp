@@ -6,6 +6,11 @@
 
 namespace tallow::app {
 
+double cappedStep(double wallS, double maxStepS) {
+  const double step = std::max(wallS, 0.0);
+  return maxStepS > 0.0 ? std::min(step, maxStepS) : step;
+}
+
 Playback::Playback(double startS, double durationS, bool loop)
     : durationS_(durationS), loop_(loop), raw_(startS), anchorTime_(startS) {}
 

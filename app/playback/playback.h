@@ -5,6 +5,13 @@
 // start + i / fps exactly, as capture always computed it.
 namespace tallow::app {
 
+/// The window's wall-clock step: `wallS` seconds, at most `maxStepS` (issue 40: with frames of
+/// seconds, following wall time would jump through the animation; capped, a slow machine plays
+/// slower instead). `maxStepS` 0: no cap. A negative `wallS` (a clock that went back) is 0.
+double cappedStep(double wallS, double maxStepS);
+/// The default cap: one frame of capture's default 30 fps.
+inline constexpr double kDefaultMaxStepS = 1.0 / 30.0;
+
 class Playback {
  public:
   /// `durationS` 0: a static scene (time still runs; nothing wraps or stops).

@@ -47,13 +47,17 @@ using Clock = std::chrono::steady_clock;
 constexpr double kTriangleSampleS = 0.25;
 /// Frames per second of the ← and → steps without --fps (capture's default rate).
 constexpr double kStepFps = 30.0;
+/// --max-step's largest value: a cap beyond a minute is a typo.
+constexpr double kMaxStepLimitS = 60.0;
 /// The window is at least this tall, so that the panel beside a small image has room.
 constexpr int kMinWindowHeight = 480;
 /// At most this share of the screen's work area, when the image and panel would be larger (the
 /// image is then shown scaled down).
 constexpr double kMaxScreenShare = 0.95;
 
-/// The window's size for an image of width × height beside the panel (or alone), on this screen.
+/// The window's size for an image of width × height beside the panel (or alone), on this screen:
+/// with the panel, as tall as the screen allows (the panel's parameters are a long list; a window
+/// as short as a small image hid them a thousand pixels down), the image centred beside it.
 std::pair<int, int> windowSizeFor(int width, int height, bool panel) {
   int w = width + (panel ? static_cast<int>(ViewPanel::kDefaultWidth) : 0);
   int h = std::max(height, panel ? kMinWindowHeight : 1);
@@ -61,15 +65,23 @@ std::pair<int, int> windowSizeFor(int width, int height, bool panel) {
     int x = 0, y = 0, areaW = 0, areaH = 0;
     glfwGetMonitorWorkarea(monitor, &x, &y, &areaW, &areaH);
     if (areaW > 0 && areaH > 0) {
-      w = std::min(w, static_cast<int>(kMaxScreenShare * areaW));
-      h = std::min(h, static_cast<int>(kMaxScreenShare * areaH));
+      const int maxW = static_cast<int>(kMaxScreenShare * areaW), maxH = static_cast<int>(kMaxScreenShare * areaH);
+      w = std::min(w, maxW);
+      h = panel ? maxH : std::min(h, maxH);
     }
   }
   return {w, h};
 }
 
+/// A screenshot's folder is created when it is saved, as capture's --out is (issue 40).
 void checkScreenshotName(const std::string& file, const std::string& option) {
-  checkOutputFile(option, file, {".png", ".exr"});
+  checkOutputFileInNewFolder(option, file, {".png", ".exr"});
+}
+
+/// The difference view compares with --reference: without it there is nothing to show.
+void checkDebugViewHasReference(const sss::DebugView& view, const ViewOptions& options, const std::string& where) {
+  if (view.kind == sss::DebugViewKind::Difference && options.reference.empty())
+    throw InputError(where + ": the difference view needs --reference REF.exr (e.g. from `tallow reference`)");
 }
 
 /// Everything the command line names, checked before a window opens: one line and no window.
@@ -84,12 +96,20 @@ CheckedInputs checkInputs(const ViewOptions& options) {
   if (options.frames < 0) throw InputError("--frames: must not be negative");
   if (options.fps != 0.0) checkFps("--fps", options.fps);  // 0: not given (wall time)
   if (options.timeS) checkTime("--time", *options.timeS);
+  if (!std::isfinite(options.maxStepS) || options.maxStepS < 0.0 || options.maxStepS > kMaxStepLimitS)
+    throw InputError("--max-step: must be in [0, " + formatNumber(kMaxStepLimitS) + "] seconds (0: no cap)");
   CheckedInputs in;
   const LoadedScene loaded = loadScene(options.scene);  // the preset's and --set's errors, first
   in.width = loaded.config.render.width;
   in.height = loaded.config.render.height;
   for (const std::string& s : options.screenshots) checkScreenshotName(s, "--screenshot");
   if (!options.savePreset.empty()) checkOutputFile("--save-preset", options.savePreset);
+  // Both are saved after the last of --frames: without it the window would run until closed and a
+  // test waiting for the file would hang.
+  if (options.frames == 0 && (!options.screenshots.empty() || !options.savePreset.empty()))
+    throw InputError(std::string(options.screenshots.empty() ? "--save-preset" : "--screenshot") +
+                     ": saved after the last frame, so it needs --frames N (the panel's Save and the S key save "
+                     "from a window left open)");
   if (!options.stats.empty()) checkOutputFile("--stats", options.stats);
   if (!options.debugView.empty()) {
     try {
@@ -97,6 +117,7 @@ CheckedInputs checkInputs(const ViewOptions& options) {
     } catch (const std::invalid_argument& e) {
       throw InputError(std::string("--debug-view: ") + e.what());
     }
+    checkDebugViewHasReference(in.debug, options, "--debug-view " + options.debugView);
   }
   if (!options.script.empty()) {
     in.script = loadScript(options.script, parameterRegistry(loaded.materials));
@@ -105,6 +126,7 @@ CheckedInputs checkInputs(const ViewOptions& options) {
         throw InputError(c.where + ": frame " + std::to_string(c.frame) + " is beyond --frames " +
                          std::to_string(options.frames));
       if (c.action == ScriptAction::Screenshot) checkScreenshotName(c.path, c.where + ": screenshot");
+      if (c.action == ScriptAction::Debug) checkDebugViewHasReference(c.debug, options, c.where + ": debug");
       if (c.action == ScriptAction::SavePreset) checkOutputFile(c.where + ": save-preset", c.path);
     }
   }
@@ -123,8 +145,28 @@ CheckedInputs checkInputs(const ViewOptions& options) {
   return in;
 }
 
+/// One frame that says what the window is waiting for, drawn before the shaders compile.
+void showStartupNotice(gpu::ImGuiLayer& imgui, ViewCanvas& canvas, GLFWwindow* window, const std::string& preset) {
+  int width = 0, height = 0;
+  glfwPollEvents();
+  glfwGetFramebufferSize(window, &width, &height);
+  imgui.beginFrame();
+  const ImGuiViewport* viewport = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(viewport->Size.x * 0.5f, viewport->Size.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::Begin("##startup", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings);
+  ImGui::Text("Tallow: compiling shaders and drawing the first frame of %s ...", preset.c_str());
+  ImGui::TextDisabled("seconds on a GPU, up to a minute on a software renderer (llvmpipe)");
+  ImGui::End();
+  canvas.present(ViewLayout{}, width, height);  // the background alone
+  imgui.endFrame();
+  glfwSwapBuffers(window);
+}
+
 /// Writes the window (.png, as shown) or the radiance (.exr) of the frame just drawn.
 void saveScreenshot(const std::string& file, const ViewSession& session, int width, int height) {
+  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);  // checked writable before the window opened
   if (std::filesystem::path(file).extension() == ".exr") session.saveRadiance(file);
   else gpu::writePngRgb8(file, width, height, gpu::readWindowRgb8(width, height));
 }
@@ -162,14 +204,17 @@ int runView(const ViewOptions& options) {
   auto context = gpu::GlContext::create(contextOptions);
   GLFWwindow* window = context->window();
   HotkeyQueue hotkeys(window);  // before ImGui's backend, which passes every key on to it
+  gpu::ImGuiLayer imgui(window);
+  ViewCanvas canvas;
+  // Compiling the shaders and the first frame take seconds on llvmpipe: said at once, not a black window.
+  showStartupNotice(imgui, canvas, window,
+                    options.scene.preset.empty() ? defaultPresetName() : options.scene.preset);
   const gpu::ShaderLibrary shaders = makeShaderLibrary(options.scene.shaderDir);
   ViewSession session(options.scene, shaders);
-  gpu::ImGuiLayer imgui(window);
   sss::DebugViewPass debugPass(shaders);
   if (inputs.reference) debugPass.setReference(*inputs.reference);
   sss::DebugView debug = inputs.debug;
   ViewPanel panel;
-  ViewCanvas canvas;
   ViewFeedback feedback;
   feedback.stepFps = options.fps > 0.0 ? options.fps : kStepFps;
   if (options.scene.explain)
@@ -179,6 +224,11 @@ int runView(const ViewOptions& options) {
   if (options.paused) session.playback().pause();
   int generation = session.generation();
   int clockFrame = 0;  // frames on this scene's clock (--fps)
+  std::string shownTitle = contextOptions.title;
+  std::vector<const ScriptCommand*> queuedCommands;  // the script's commands after a screenshot, run next
+  // Where the debug view shown was asked for (--debug-view, a script's line) until a frame shows
+  // it: a view that cannot be shown (map:99 with K = 12) is refused there, not shown as the image.
+  std::string debugWhere = options.debugView.empty() ? "" : "--debug-view " + options.debugView;
 
   RunRecord run;
   run.command = "view";
@@ -225,27 +275,49 @@ int runView(const ViewOptions& options) {
       generation = session.generation();
       clockFrame = 0;
     }
-    if (options.fps > 0.0) session.playback().setFrame(clockFrame, options.fps);
-    else if (frame > 0) session.playback().advance(dt);
-    ++clockFrame;
+    // A script's commands after a screenshot in the same frame run in a render of their own at the
+    // same animation time, so that the screenshot shows the scene as the script stood at its line.
+    const bool scriptStep = !queuedCommands.empty();
+    feedback.realTimeShare = 1.0;
+    if (scriptStep) {
+      // the clock holds
+    } else if (options.fps > 0.0) {
+      session.playback().setFrame(clockFrame, options.fps);
+    } else if (frame > 0) {
+      const double step = cappedStep(dt, options.maxStepS);
+      session.playback().advance(step);
+      if (step < dt) feedback.realTimeShare = step / dt;
+    }
+    if (!scriptStep) ++clockFrame;
 
     // The script's commands for this frame, the hotkeys (pressed since the last frame, then the
     // script's), then the panel and the mouse: all take effect in the frame rendered next.
     ViewRequests requests;
     std::string scriptWhere;
     bool quit = false;
-    if (inputs.script)
-      for (const ScriptCommand* c : inputs.script->at(frame)) {
+    if (inputs.script) {
+      std::vector<const ScriptCommand*> commands = scriptStep ? std::move(queuedCommands) : inputs.script->at(frame);
+      queuedCommands.clear();
+      for (std::size_t i = 0; i < commands.size(); ++i) {
+        const ScriptCommand* c = commands[i];
         if (applyScriptCommand(*c, session.config(), session.registry(), session.playback())) {
           scriptWhere = c->where;
           continue;
         }
-        if (c->action == ScriptAction::Debug) debug = c->debug;
-        if (c->action == ScriptAction::Screenshot) requests.screenshots.push_back(c->path);
+        if (c->action == ScriptAction::Debug) {
+          debug = c->debug;
+          debugWhere = c->where + ": debug";
+        }
+        if (c->action == ScriptAction::Screenshot) {
+          requests.screenshots.push_back(c->path);
+          queuedCommands.assign(commands.begin() + static_cast<std::ptrdiff_t>(i) + 1, commands.end());
+          break;  // the rest after this frame's render
+        }
         if (c->action == ScriptAction::SavePreset) requests.presets.push_back(c->path);
         if (c->action == ScriptAction::Key) hotkeys.push(c->hotkey);
         if (c->action == ScriptAction::Quit) quit = true;
       }
+    }
     for (const Hotkey key : hotkeys.take()) {
       Playback& clock = session.playback();
       switch (key) {
@@ -316,10 +388,20 @@ int runView(const ViewOptions& options) {
     if (!feedback.frame.refused.empty() && !scriptWhere.empty())
       throw InputError(scriptWhere + ": " + feedback.frame.refused);
     panel.record(feedback.frame);
+    // The title says what the picture waits for, where the panel may be hidden (F1) or scrolled.
+    std::string title = "Tallow — " + session.presetName();
+    if (const std::optional<AccumulationProgress> p = accumulationProgress(session, feedback.frame.wallMs))
+      title += " — " + p->text();
+    if (title != shownTitle) {
+      glfwSetWindowTitle(window, title.c_str());
+      shownTitle = std::move(title);
+    }
     const Config& shown = session.config();  // as rendered (a refused change was undone)
     const GLuint picture = canvas.target(shown.render.width, shown.render.height);
     feedback.debugNote = debugPass.render(debug, session.renderer(), shown.scene, shown.render, picture,
                                           shown.render.width, shown.render.height);
+    if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
+    debugWhere.clear();
     canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
                    width, height);
     imgui.endFrame();
@@ -335,7 +417,7 @@ int runView(const ViewOptions& options) {
         lastTriangles = now;
       }
 
-    if (options.frames > 0 && frame == options.frames - 1) {
+    if (options.frames > 0 && frame == options.frames - 1 && queuedCommands.empty()) {
       for (const std::string& s : options.screenshots) requests.screenshots.push_back(s);
       if (!options.savePreset.empty()) requests.presets.push_back(options.savePreset);
     }
@@ -382,6 +464,8 @@ int runView(const ViewOptions& options) {
                                           shown.render.height),
                                width, height);
       record.view["playing"] = session.playback().playing();
+      record.view["real_time_share"] = feedback.realTimeShare;
+      record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
       record.view["panel_visible"] = panelVisible;
       record.view["can_undo"] = session.history().canUndo();
       record.view["can_redo"] = session.history().canRedo();
@@ -391,6 +475,7 @@ int runView(const ViewOptions& options) {
       flushStats(false);
     }
     glfwSwapBuffers(window);
+    if (!queuedCommands.empty()) --frame;  // the same script frame again, for the rest of its commands
   }
 
   if (!options.stats.empty()) {

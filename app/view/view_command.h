@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/config/setup.h"
+#include "app/playback/playback.h"
 
 namespace tallow::app {
 
@@ -23,6 +24,9 @@ struct ViewOptions {
   std::string reference;   ///< EXR for the difference debug view
   std::string debugView;   ///< initial debug view (sss/debug_view.h), e.g. "map:3"
   double fps = 0.0;        ///< > 0: the clock advances 1/fps per frame instead of by wall time
+  /// By wall time, the clock advances at most this much per frame (app/playback/playback.h's
+  /// cappedStep); 0: no cap.
+  double maxStepS = kDefaultMaxStepS;
   std::optional<double> timeS;  ///< animation time of the first frame (default: the preset's start_s)
   bool paused = false;     ///< start with the animation paused
   bool hidePanel = false;  ///< no ImGui panel (screenshots of the image alone)

@@ -21,9 +21,15 @@ void mouseCamera(ViewSession& session, int height) {
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantCaptureMouse || height <= 0) return;
   sss::Camera camera = session.config().scene.camera;
-  const double dx = io.MouseDelta.x / height, dy = io.MouseDelta.y / height;  // screen y grows downward
-  const bool moved = dx != 0.0 || dy != 0.0;
   const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
+  const int button = io.MouseDown[0] ? 0 : io.MouseDown[1] ? 1 : 2;
+  // A drag starts where its button went down: in the frame of the click, the motion from the cursor's
+  // position one (slow) frame earlier to the click is not part of it (issue 40: it flung the camera).
+  const ImVec2 delta = io.MouseClicked[button] ? ImVec2(io.MousePos.x - io.MouseClickedPos[button].x,
+                                                        io.MousePos.y - io.MouseClickedPos[button].y)
+                                               : io.MouseDelta;
+  const double dx = delta.x / height, dy = delta.y / height;  // screen y grows downward
+  const bool moved = dx != 0.0 || dy != 0.0;
   bool changed = false;
   if (moved && pan) {
     panCamera(camera, dx, -dy);

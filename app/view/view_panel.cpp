@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "app/commands/progress.h"
 #include "app/config/setup.h"
 #include "app/playback/hotkeys.h"
 #include "app/view/numbered_file.h"
@@ -82,6 +83,23 @@ std::string millisecondsText(double ms) {
 
 }  // namespace
 
+std::string AccumulationProgress::text() const {
+  std::string t = "accumulating " + std::to_string(done) + " of " + std::to_string(total) + " frames";
+  if (secondsLeft >= 0.0) t += ", about " + formatDuration(secondsLeft) + " left";
+  return t;
+}
+
+std::optional<AccumulationProgress> accumulationProgress(const ViewSession& session, double frameMs) {
+  const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
+  const Config& c = session.config();
+  if (!maps || !sss::RadiosityMaps::applies(c.scene, c.render) || maps->frames() >= c.render.sss.frames) return std::nullopt;
+  AccumulationProgress p;
+  p.done = maps->frames();
+  p.total = c.render.sss.frames;
+  if (frameMs > 0.0) p.secondsLeft = (p.total - p.done) * frameMs / 1000.0;
+  return p;
+}
+
 std::string defaultSaveBase(const std::string& presetName) { return "tallow-" + presetName; }
 
 void ViewPanel::record(const ViewSession::Frame& frame) {
@@ -123,9 +141,14 @@ std::string ViewPanel::draw(ViewSession& session, sss::DebugView& debug, const V
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
   width_ = static_cast<int>(std::lround(ImGui::GetWindowSize().x * scale.x));
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.0f);  // room for the labels with their units
+  // What the picture is waiting for, first: the accumulation's progress with the time left.
+  if (const std::optional<AccumulationProgress> p = accumulationProgress(session, feedback.frame.wallMs)) {
+    ImGui::ProgressBar(static_cast<float>(p->done) / static_cast<float>(std::max(p->total, 1)), ImVec2(-1.0f, 0.0f),
+                       p->text().c_str());
+  }
   status = drawPreset(session);
   if (ImGui::CollapsingHeader("Playback and camera", ImGuiTreeNodeFlags_DefaultOpen))
-    drawPlayback(session, requests, feedback.stepFps);
+    drawPlayback(session, requests, feedback);
   if (ImGui::CollapsingHeader("Feedback", ImGuiTreeNodeFlags_DefaultOpen)) drawFeedback(session, feedback);
   if (ImGui::CollapsingHeader("Debug view")) drawDebugView(session, debug, feedback);
   if (ImGui::CollapsingHeader("Save")) drawSave(session, requests);
@@ -165,7 +188,8 @@ std::string ViewPanel::drawPreset(ViewSession& session) {
   return status;
 }
 
-void ViewPanel::drawPlayback(ViewSession& session, ViewRequests& requests, double stepFps) {
+void ViewPanel::drawPlayback(ViewSession& session, ViewRequests& requests, const ViewFeedback& feedback) {
+  const double stepFps = feedback.stepFps;
   Playback& clock = session.playback();
   if (ImGui::Button(clock.playing() ? "pause" : "play ")) clock.playing() ? clock.pause() : clock.play();
   hoverText("Space");
@@ -196,6 +220,11 @@ void ViewPanel::drawPlayback(ViewSession& session, ViewRequests& requests, doubl
   float speed = static_cast<float>(clock.speed());
   if (ImGui::SliderFloat("speed", &speed, kSpeedMin, kSpeedMax, "%.2fx", ImGuiSliderFlags_Logarithmic))
     clock.setSpeed(speed);
+  if (clock.playing() && feedback.realTimeShare < 1.0) {
+    ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "behind real time: playing at %.2gx", feedback.realTimeShare);
+    hoverText("each frame takes longer than --max-step, so the clock moves by that much per frame: "
+              "a slow machine plays slower instead of skipping (--max-step 0 follows wall time)");
+  }
   ImGui::TextDisabled("mouse: left drag orbits, right drag pans, wheel zooms");
 
   const EditHistory& history = session.history();
@@ -216,14 +245,22 @@ void ViewPanel::drawPlayback(ViewSession& session, ViewRequests& requests, doubl
 
 void ViewPanel::drawFeedback(const ViewSession& session, const ViewFeedback& feedback) {
   const ViewSession::Frame& f = feedback.frame;
-  ImGui::Text("wall %.1f ms (%.3g fps)   CPU %.1f ms   GPU %.1f ms", f.wallMs, f.wallMs > 0.0 ? 1000.0 / f.wallMs : 0.0,
-              f.gpu.cpuTotalMs, f.shown.gpuKnown() ? f.shown.gpuTotalMs : 0.0);
+  // No figure before it is measured: the first frame's panel is drawn before that frame renders.
+  if (f.wallMs <= 0.0) ImGui::TextDisabled("the first frame is being drawn ...");
+  else if (f.shown.gpuKnown())
+    ImGui::Text("wall %.1f ms (%.3g fps)   CPU %.1f ms   GPU %.1f ms", f.wallMs, 1000.0 / f.wallMs, f.gpu.cpuTotalMs,
+                f.shown.gpuTotalMs);
+  else
+    ImGui::Text("wall %.1f ms (%.3g fps)   CPU %.1f ms   GPU (not read yet)", f.wallMs, 1000.0 / f.wallMs, f.gpu.cpuTotalMs);
   drawTimingGraph();
   const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
   if (maps && sss::RadiosityMaps::applies(session.config().scene, session.config().render))
     ImGui::Text("maps: K %zu, %d of %d frames accumulated", maps->views().size(), maps->frames(),
                 session.config().render.sss.frames);
-  ImGui::Text("GPU memory %s   triangles %zu", megabytes(session.renderer().gpuBytes()).c_str(), feedback.triangles);
+  if (feedback.triangles)
+    ImGui::Text("GPU memory %s   triangles %zu", megabytes(session.renderer().gpuBytes()).c_str(), *feedback.triangles);
+  else
+    ImGui::Text("GPU memory %s   triangles (not counted yet)", megabytes(session.renderer().gpuBytes()).c_str());
   if (!f.refused.empty()) statusLine("refused: " + f.refused, true);
   if (ImGui::TreeNode("frame plan")) {
     const Config& c = session.config();

@@ -8,6 +8,7 @@
 // (app/view/view_param_widgets.h).
 #include <deque>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,12 +28,27 @@ struct ViewRequests {
 /// What the window tells the panel about the last frame.
 struct ViewFeedback {
   ViewSession::Frame frame;
-  std::size_t triangles = 0;  ///< sampled a few times a second (counting stalls the GPU)
+  /// Sampled a few times a second once the GPU has the count (nothing before the first).
+  std::optional<std::size_t> triangles;
   std::string debugNote;      ///< why the debug view shows the final image instead
   std::string status;         ///< the last save, load or undo: "wrote x.png", or its error
   bool statusIsError = false;
   double stepFps = 30.0;      ///< frames per second of ← and →
+  /// Playing by wall time with frames longer than --max-step: the share of real time the animation
+  /// plays at (the clock's step over the frame's wall time, < 1); 1 when not behind.
+  double realTimeShare = 1.0;
 };
+
+/// The radiosity maps' accumulation while it runs: frames done of sss.frames, and an estimate of
+/// the time left from the frames' wall time (`frameMs`, the last frame's); nothing once complete, or
+/// where the method keeps no maps.
+struct AccumulationProgress {
+  int done = 0, total = 0;
+  double secondsLeft = -1.0;  ///< negative: no estimate yet (no frame timed)
+  /// "accumulating 5 of 64 frames, about 4 min 05 s left".
+  std::string text() const;
+};
+std::optional<AccumulationProgress> accumulationProgress(const ViewSession& session, double frameMs);
 
 /// The base name the panel saves under by default: "tallow-<preset>" (numbered: -0001.png, …).
 std::string defaultSaveBase(const std::string& presetName);
@@ -59,7 +75,7 @@ class ViewPanel {
 
  private:
   std::string drawPreset(ViewSession& session);
-  void drawPlayback(ViewSession& session, ViewRequests& requests, double stepFps);
+  void drawPlayback(ViewSession& session, ViewRequests& requests, const ViewFeedback& feedback);
   void drawFeedback(const ViewSession& session, const ViewFeedback& feedback);
   void drawTimingGraph();
   void drawDebugView(const ViewSession& session, sss::DebugView& debug, const ViewFeedback& feedback);

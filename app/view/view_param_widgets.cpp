@@ -186,6 +186,13 @@ void ParamWidgets::drawParam(const Registry::Param& p, const json& value, const 
       pendingInts_.erase(p.key);
     }
     tooltip(p);
+    // Applied on release; meanwhile what the new value would cost (issue 40).
+    const int current = value.is_number_integer() ? static_cast<int>(value.get<std::int64_t>()) : 0;
+    if (p.costPower > 0 && pendingInts_.count(p.key) && current > 0 && v != current) {
+      const double ratio = std::pow(static_cast<double>(v) / current, p.costPower);
+      ImGui::TextColored(ratio > 2.0 ? ImVec4(1.0f, 0.6f, 0.3f, 1.0f) : ImVec4(0.7f, 0.7f, 0.7f, 1.0f),
+                         "on release: about %.2gx the work of the passes it feeds", ratio);
+    }
   } else if (p.type == "float") {
     float v = value.get<float>();
     const float lo = static_cast<float>(p.min), hi = static_cast<float>(p.max);
