@@ -143,6 +143,9 @@ class Pass {
   virtual PassIo io(const FrameState& state) const = 0;
   /// True when the pass wants to run although nothing it reads changed (see the file comment).
   virtual bool runsAgain(const FrameState& /*state*/) const { return false; }
+  /// True for a progressive pass whose runs on unchanged inputs refine an estimate (the maps'
+  /// accumulation): Renderer::holdRefinement skips those runs while the user moves something.
+  virtual bool refines() const { return false; }
   /// True for a pass that only makes the picture shown from the finished picture (the glare): its
   /// changed inputs do not restart a still's average (render.aa).
   virtual bool afterPicture() const { return false; }

@@ -107,6 +107,7 @@ std::vector<std::pair<Pass*, Renderer::Due>> Renderer::schedule(const FrameState
     const PassIo io = pass->io(state);
     const Due d = due(*pass, state, io, resources);
     if (d == Due::No) continue;
+    if (holdRefinement_ && d == Due::Again && pass->refines()) continue;
     out.emplace_back(pass, d);
     for (const std::string& w : io.writes) {
       Stamp& s = resources[w];
@@ -221,6 +222,7 @@ FrameTimings Renderer::render(const Scene& sceneAsLoaded, const RenderSettings& 
   }
   forget_ = false;
   held_.clear();
+  holdRefinement_ = false;
   shown_ = context.shown;
   if (context.countMapCoverage) coverageProbe_.end();
   // No wait here: this frame's GPU times are read later (resolveTimings, latestTimings).

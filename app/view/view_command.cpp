@@ -294,6 +294,7 @@ int runView(const ViewOptions& options) {
     // script's), then the panel and the mouse: all take effect in the frame rendered next.
     ViewRequests requests;
     std::string scriptWhere;
+    bool scriptMovedCamera = false;
     bool quit = false;
     if (inputs.script) {
       std::vector<const ScriptCommand*> commands = scriptStep ? std::move(queuedCommands) : inputs.script->at(frame);
@@ -302,6 +303,9 @@ int runView(const ViewOptions& options) {
         const ScriptCommand* c = commands[i];
         if (applyScriptCommand(*c, session.config(), session.registry(), session.playback())) {
           scriptWhere = c->where;
+          // A scripted camera move is a step of a drag: the frame is a preview as the mouse's is.
+          scriptMovedCamera |= c->action == ScriptAction::Orbit || c->action == ScriptAction::Pan ||
+                               c->action == ScriptAction::Zoom;
           continue;
         }
         if (c->action == ScriptAction::Debug) {
@@ -375,6 +379,15 @@ int runView(const ViewOptions& options) {
     const ViewLayout layout = layoutView(width, height, panelVisible ? panel.width() : 0, session.config().render.width,
                                          session.config().render.height);
     mouseCamera(session, layout.image.height);
+    // While the camera or a widget moves, a preview: the progressive passes keep what they hold
+    // instead of accumulating more (Renderer::holdRefinement); the first still frame refines again.
+    {
+      const ImGuiIO& io = ImGui::GetIO();
+      const bool dragOnImage = !io.WantCaptureMouse && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
+      feedback.preview = scriptMovedCamera || dragOnImage || (!io.WantCaptureMouse && io.MouseWheel != 0.0f) ||
+                         ImGui::IsAnyItemActive();
+      if (feedback.preview) session.renderer().holdRefinement();
+    }
     // A size set in the panel or a script: the window grows or shrinks to show it at scale 1.
     const Config& c = session.config();
     if (c.render.width != imageW || c.render.height != imageH) {
@@ -466,6 +479,7 @@ int runView(const ViewOptions& options) {
       record.view["playing"] = session.playback().playing();
       record.view["real_time_share"] = feedback.realTimeShare;
       record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
+      record.view["preview"] = feedback.preview;  // input moved: refinement held
       record.view["panel_visible"] = panelVisible;
       record.view["can_undo"] = session.history().canUndo();
       record.view["can_redo"] = session.history().canRedo();

@@ -145,6 +145,7 @@ std::string ViewPanel::draw(ViewSession& session, sss::DebugView& debug, const V
   if (const std::optional<AccumulationProgress> p = accumulationProgress(session, feedback.frame.wallMs)) {
     ImGui::ProgressBar(static_cast<float>(p->done) / static_cast<float>(std::max(p->total, 1)), ImVec2(-1.0f, 0.0f),
                        p->text().c_str());
+    if (feedback.preview) ImGui::TextDisabled("preview while you move: accumulation resumes when you stop");
   }
   status = drawPreset(session);
   if (ImGui::CollapsingHeader("Playback and camera", ImGuiTreeNodeFlags_DefaultOpen))

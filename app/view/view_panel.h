@@ -37,6 +37,8 @@ struct ViewFeedback {
   /// Playing by wall time with frames longer than --max-step: the share of real time the animation
   /// plays at (the clock's step over the frame's wall time, < 1); 1 when not behind.
   double realTimeShare = 1.0;
+  /// The camera or a widget moved this frame: a preview that holds the progressive passes.
+  bool preview = false;
 };
 
 /// The radiosity maps' accumulation while it runs: frames done of sss.frames, and an estimate of

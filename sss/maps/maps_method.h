@@ -37,6 +37,7 @@ class RadiosityMapsPass final : public Pass {
   std::string reason(const FrameState& state) const override;
   PassIo io(const FrameState& state) const override;
   bool runsAgain(const FrameState& state) const override;
+  bool refines() const override { return true; }
   void run(FrameContext& context, bool changed) override;
 
  private:
