@@ -79,8 +79,8 @@ int main(int argc, char** argv) {
   auto* viewCmd = app.add_subcommand("view", "open the preset in a window (the default command)");
   addSceneOptions(*viewCmd, view.scene);
   viewCmd->add_option("--frames", view.frames, "close after this many frames (0: when the window closes)");
-  viewCmd->add_option("--screenshot", view.screenshots, "after the last frame save FILE.png (the window, panel included) or FILE.exr (the radiance); repeatable");
-  viewCmd->add_option("--save-preset", view.savePreset, "after the last frame save a preset that `capture --preset FILE` renders as shown");
+  viewCmd->add_option("--screenshot", view.screenshots, "after the last of --frames (needed) save FILE.png (the window, panel included) or FILE.exr (the radiance), its folder created; repeatable");
+  viewCmd->add_option("--save-preset", view.savePreset, "after the last of --frames (needed) save a preset that `capture --preset FILE` renders as shown");
   viewCmd->add_option("--script", view.script, "timed commands, e.g. `frame 5 set sss.maps=8` (docs/view.md)");
   viewCmd->add_option("--stats", view.stats, "write stats.json of the run (per frame: timings, changed parameters, maps)");
   viewCmd->add_option("--reference", view.reference, "REF.exr for the difference debug view (e.g. from `tallow reference`)");
