@@ -34,6 +34,14 @@ KeyTaps* activeTaps = nullptr;
 GLFWkeyfun backendKeyCallback = nullptr;
 std::vector<int> heldTaps;
 
+/// The modifiers as the backend sets them from the keys' state (it does so only in its key callback).
+void updateModifiers(ImGuiIO& io) {
+  io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL];
+  io.KeyShift = io.KeysDown[GLFW_KEY_LEFT_SHIFT] || io.KeysDown[GLFW_KEY_RIGHT_SHIFT];
+  io.KeyAlt = io.KeysDown[GLFW_KEY_LEFT_ALT] || io.KeysDown[GLFW_KEY_RIGHT_ALT];
+  io.KeySuper = io.KeysDown[GLFW_KEY_LEFT_SUPER] || io.KeysDown[GLFW_KEY_RIGHT_SUPER];
+}
+
 /// The backend's callback first (it passes the key on to the one installed before it: the hotkeys),
 /// then the press remembered.
 void onKey(GLFWwindow* window, int key, int scancode, int action, int mods) {
@@ -83,6 +91,7 @@ void ImGuiLayer::beginFrame() {
   ImGuiIO& io = ImGui::GetIO();
   heldTaps = taps_.tapsToHold([&io](int key) { return io.KeysDown[key]; });
   for (const int key : heldTaps) io.KeysDown[key] = true;
+  if (!heldTaps.empty()) updateModifiers(io);  // a tapped Ctrl-Z is Ctrl and Z for the frame
   ImGui::NewFrame();
 }
 
@@ -91,6 +100,7 @@ void ImGuiLayer::endFrame() {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   ImGuiIO& io = ImGui::GetIO();
   for (const int key : heldTaps) io.KeysDown[key] = false;  // released after its one frame
+  if (!heldTaps.empty()) updateModifiers(io);
   heldTaps.clear();
 }
 
