@@ -318,13 +318,19 @@ TEST(View, ImpossibleDebugViewsEndWithOneLine) {
   const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "tallow: --debug-view map:99: map 99 does not exist (K = 4)\n");
   dir.write("debug.txt", "frame 1 debug map:2\nframe 2 debug map:7\n");
-  r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--frames", "4", "--script", "debug.txt"}) +
+  r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--frames", "4", "--script", "debug.txt", "--stats",
+                                     "stats.json"}) +
                              " 2>err2.txt",
                          dir.path());
   EXPECT_NE(r.exitCode, 0);
   std::ifstream err2(dir.path() / "err2.txt");
   const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text2, "tallow: debug.txt:2:9: debug: map 7 does not exist (K = 4)\n");
+  // --stats written whole, saying where the run stopped and why, with the two frames drawn before.
+  const json stats = readJson(dir.path() / "stats.json");
+  EXPECT_EQ(stats["run"]["state"], "failed");
+  EXPECT_EQ(stats["run"]["stop_reason"], "debug.txt:2:9: debug: map 7 does not exist (K = 4)");
+  EXPECT_EQ(stats["frames"].size(), 2u);
 }
 
 TEST(View, UndoRestoresTheExactPresetAndRedoReappliesTheEdit) {

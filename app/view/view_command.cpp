@@ -257,242 +257,8 @@ int runView(const ViewOptions& options) {
   auto lastTriangles = last - std::chrono::hours(1);
   int width = 0, height = 0;
   int imageW = session.config().render.width, imageH = session.config().render.height;
-  for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
-    glfwPollEvents();
-    // SIGINT, SIGTERM or SIGHUP (a closed terminal) end the window as its close button does, with
-    // --stats written whole and saying so.
-    if (glfwWindowShouldClose(window) || interrupted()) break;
-    glfwGetFramebufferSize(window, &width, &height);
-    if (width == 0 || height == 0) {  // minimised
-      --frame;
-      glfwWaitEvents();
-      continue;
-    }
-    const auto now = Clock::now();
-    const double dt = std::chrono::duration<double>(now - last).count();
-    last = now;
-    if (session.generation() != generation) {  // the panel loaded another preset
-      generation = session.generation();
-      clockFrame = 0;
-    }
-    // A script's commands after a screenshot in the same frame run in a render of their own at the
-    // same animation time, so that the screenshot shows the scene as the script stood at its line.
-    const bool scriptStep = !queuedCommands.empty();
-    feedback.realTimeShare = 1.0;
-    if (scriptStep) {
-      // the clock holds
-    } else if (options.fps > 0.0) {
-      session.playback().setFrame(clockFrame, options.fps);
-    } else if (frame > 0) {
-      const double step = cappedStep(dt, options.maxStepS);
-      session.playback().advance(step);
-      if (step < dt) feedback.realTimeShare = step / dt;
-    }
-    if (!scriptStep) ++clockFrame;
-
-    // The script's commands for this frame, the hotkeys (pressed since the last frame, then the
-    // script's), then the panel and the mouse: all take effect in the frame rendered next.
-    ViewRequests requests;
-    std::string scriptWhere;
-    bool scriptMovedCamera = false;
-    bool quit = false;
-    if (inputs.script) {
-      std::vector<const ScriptCommand*> commands = scriptStep ? std::move(queuedCommands) : inputs.script->at(frame);
-      queuedCommands.clear();
-      for (std::size_t i = 0; i < commands.size(); ++i) {
-        const ScriptCommand* c = commands[i];
-        if (applyScriptCommand(*c, session.config(), session.registry(), session.playback())) {
-          scriptWhere = c->where;
-          // A scripted camera move is a step of a drag: the frame is a preview as the mouse's is.
-          scriptMovedCamera |= c->action == ScriptAction::Orbit || c->action == ScriptAction::Pan ||
-                               c->action == ScriptAction::Zoom;
-          continue;
-        }
-        if (c->action == ScriptAction::Debug) {
-          debug = c->debug;
-          debugWhere = c->where + ": debug";
-        }
-        if (c->action == ScriptAction::Screenshot) {
-          requests.screenshots.push_back(c->path);
-          queuedCommands.assign(commands.begin() + static_cast<std::ptrdiff_t>(i) + 1, commands.end());
-          break;  // the rest after this frame's render
-        }
-        if (c->action == ScriptAction::SavePreset) requests.presets.push_back(c->path);
-        if (c->action == ScriptAction::Key) hotkeys.push(c->hotkey);
-        if (c->action == ScriptAction::Quit) quit = true;
-      }
-    }
-    for (const Hotkey key : hotkeys.take()) {
-      Playback& clock = session.playback();
-      switch (key) {
-        case Hotkey::PlayPause:
-          clock.playing() ? clock.pause() : clock.play();
-          break;
-        case Hotkey::StepBack:
-        case Hotkey::StepForward:
-          clock.pause();
-          clock.seek(clock.time() + (key == Hotkey::StepForward ? 1.0 : -1.0) / feedback.stepFps);
-          break;
-        case Hotkey::ResetCamera:
-          session.resetCamera();
-          break;
-        case Hotkey::Screenshot:
-          requests.screenshots.push_back(nextNumberedFile(panel.saveBase(session.presetName()), ".png").string());
-          break;
-        case Hotkey::Undo:
-        case Hotkey::Redo:
-          break;  // below, one at a time in the order pressed
-        case Hotkey::TogglePanel:
-          panelVisible = !panelVisible;
-          break;
-        case Hotkey::Quit:
-          quit = true;
-          break;
-      }
-      if (key == Hotkey::Undo || key == Hotkey::Redo) {  // one at a time, in order
-        const std::string what = key == Hotkey::Undo ? session.undo() : session.redo();
-        feedback.status = what.empty() ? std::string("nothing to ") + (key == Hotkey::Undo ? "undo" : "redo")
-                                       : std::string(key == Hotkey::Undo ? "undid " : "redid ") + what;
-        feedback.statusIsError = false;
-      }
-    }
-    if (quit) break;
-    imgui.beginFrame();
-    if (panelVisible) {
-      const std::string status = panel.draw(session, debug, feedback, requests, width, height);
-      if (!status.empty()) {
-        feedback.status = status;
-        feedback.statusIsError = true;
-      }
-      if (session.generation() != generation) {  // a preset was loaded: start its clock as asked
-        generation = session.generation();
-        clockFrame = 0;
-        feedback.status = "loaded " + session.presetName();
-        feedback.statusIsError = false;
-      }
-    }
-    if (requests.undo || requests.redo) {  // the panel's buttons
-      const std::string what = requests.undo ? session.undo() : session.redo();
-      feedback.status = (requests.undo ? "undid " : "redid ") + what;
-      feedback.statusIsError = false;
-    }
-    const ViewLayout layout = layoutView(width, height, panelVisible ? panel.width() : 0, session.config().render.width,
-                                         session.config().render.height);
-    mouseCamera(session, layout.image.height);
-    // While the camera or a widget moves, a preview: the progressive passes keep what they hold
-    // instead of accumulating more (Renderer::holdRefinement); the first still frame refines again.
-    {
-      const ImGuiIO& io = ImGui::GetIO();
-      const bool dragOnImage = !io.WantCaptureMouse && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
-      feedback.preview = scriptMovedCamera || dragOnImage || (!io.WantCaptureMouse && io.MouseWheel != 0.0f) ||
-                         ImGui::IsAnyItemActive();
-      if (feedback.preview) session.renderer().holdRefinement();
-    }
-    // A size set in the panel or a script: the window grows or shrinks to show it at scale 1.
-    const Config& c = session.config();
-    if (c.render.width != imageW || c.render.height != imageH) {
-      imageW = c.render.width;
-      imageH = c.render.height;
-      const auto [w, h] = windowSizeFor(imageW, imageH, panelVisible);
-      glfwSetWindowSize(window, w, h);
-    }
-
-    feedback.frame = session.render();
-    if (!feedback.frame.refused.empty() && !scriptWhere.empty())
-      throw InputError(scriptWhere + ": " + feedback.frame.refused);
-    panel.record(feedback.frame);
-    // The title says what the picture waits for, where the panel may be hidden (F1) or scrolled.
-    std::string title = "Tallow — " + session.presetName();
-    if (const std::optional<AccumulationProgress> p = accumulationProgress(session, feedback.frame.wallMs))
-      title += " — " + p->text();
-    if (title != shownTitle) {
-      glfwSetWindowTitle(window, title.c_str());
-      shownTitle = std::move(title);
-    }
-    const Config& shown = session.config();  // as rendered (a refused change was undone)
-    const GLuint picture = canvas.target(shown.render.width, shown.render.height);
-    feedback.debugNote = debugPass.render(debug, session.renderer(), shown.scene, shown.render, picture,
-                                          shown.render.width, shown.render.height);
-    if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
-    debugWhere.clear();
-    canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
-                   width, height);
-    imgui.endFrame();
-    // An edit ends when nothing is held: a slider released, a drag finished. Until then its
-    // intermediate values are one step in the making.
-    const ImGuiIO& io = ImGui::GetIO();
-    if (!ImGui::IsAnyItemActive() && !io.MouseDown[0] && !io.MouseDown[1] && !io.MouseDown[2]) session.commitEdits();
-    // Sampled a few times a second, and only once the GPU has the count: reading the transform-
-    // feedback query right after the frame that issued it would wait for that frame's extraction.
-    if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS))
-      if (const std::optional<std::size_t> n = session.renderer().triangleCountIfAvailable()) {
-        feedback.triangles = *n;
-        lastTriangles = now;
-      }
-
-    if (options.frames > 0 && frame == options.frames - 1 && queuedCommands.empty()) {
-      for (const std::string& s : options.screenshots) requests.screenshots.push_back(s);
-      if (!options.savePreset.empty()) requests.presets.push_back(options.savePreset);
-    }
-    for (const std::string& file : requests.screenshots) {
-      try {
-        saveScreenshot(file, session, width, height);
-        feedback.status = "wrote " + file;
-        feedback.statusIsError = false;
-      } catch (const std::exception& e) {
-        if (!inputs.script && options.frames == 0) {  // interactive: say it in the panel
-          feedback.status = e.what();
-          feedback.statusIsError = true;
-        } else {
-          throw;
-        }
-      }
-    }
-    for (const std::string& file : requests.presets) {
-      try {
-        session.savePreset(file);
-        feedback.status = "wrote " + file;
-        feedback.statusIsError = false;
-      } catch (const std::exception& e) {
-        if (!inputs.script && options.frames == 0) {
-          feedback.status = e.what();
-          feedback.statusIsError = true;
-        } else {
-          throw;
-        }
-      }
-    }
-
-    if (!options.stats.empty()) {
-      FrameRecord record;
-      record.index = frame;
-      record.timeS = feedback.frame.timeS;
-      record.wallMs = feedback.frame.wallMs;
-      record.gpu = feedback.frame.gpu;
-      nlohmann::json now = session.registry().snapshot(session.config());
-      record.changed = changedParameters(parameters, now);
-      parameters = std::move(now);
-      record.sss = mapsRecord(session.renderer());
-      record.view = layoutJson(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width,
-                                          shown.render.height),
-                               width, height);
-      record.view["playing"] = session.playback().playing();
-      record.view["real_time_share"] = feedback.realTimeShare;
-      record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
-      record.view["preview"] = feedback.preview;  // input moved: refinement held
-      record.view["panel_visible"] = panelVisible;
-      record.view["can_undo"] = session.history().canUndo();
-      record.view["can_redo"] = session.history().canRedo();
-      // Written once the GPU has the frame's times (a frame or two later), so that the window never
-      // waits on a query; only a GPU as far behind as the timer's ring keeps frames makes it wait.
-      pendingStats.push_back(std::move(record));
-      flushStats(false);
-    }
-    glfwSwapBuffers(window);
-    if (!queuedCommands.empty()) --frame;  // the same script frame again, for the rest of its commands
-  }
-
-  if (!options.stats.empty()) {
+  // stats.json written whole: `state` empty keeps the writer's own (complete), else with the reason.
+  const auto finishStats = [&](const std::string& state, const std::string& reason) {
     flushStats(true);
     run.presetName = session.presetName();
     run.presetPath = session.presetPath().string();
@@ -500,11 +266,263 @@ int runView(const ViewOptions& options) {
     run.height = session.config().render.height;
     run.gpuBytes = session.renderer().gpuBytes();
     run.triangles = session.renderer().triangleCount();
-    if (interrupted()) {
-      run.state = "interrupted";
-      run.stopReason = interruptName();
+    if (!state.empty()) {
+      run.state = state;
+      run.stopReason = reason;
     }
     stats->finish(run);
+  };
+  // A failure during the run (a script line the scene refuses, a debug view it cannot show) ends
+  // it with --stats written whole, saying where and why it stopped, as capture does.
+  try {
+    for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
+      glfwPollEvents();
+      // SIGINT, SIGTERM or SIGHUP (a closed terminal) end the window as its close button does, with
+      // --stats written whole and saying so.
+      if (glfwWindowShouldClose(window) || interrupted()) break;
+      glfwGetFramebufferSize(window, &width, &height);
+      if (width == 0 || height == 0) {  // minimised
+        --frame;
+        glfwWaitEvents();
+        continue;
+      }
+      const auto now = Clock::now();
+      const double dt = std::chrono::duration<double>(now - last).count();
+      last = now;
+      if (session.generation() != generation) {  // the panel loaded another preset
+        generation = session.generation();
+        clockFrame = 0;
+      }
+      // A script's commands after a screenshot in the same frame run in a render of their own at the
+      // same animation time, so that the screenshot shows the scene as the script stood at its line.
+      const bool scriptStep = !queuedCommands.empty();
+      feedback.realTimeShare = 1.0;
+      if (scriptStep) {
+        // the clock holds
+      } else if (options.fps > 0.0) {
+        session.playback().setFrame(clockFrame, options.fps);
+      } else if (frame > 0) {
+        const double step = cappedStep(dt, options.maxStepS);
+        session.playback().advance(step);
+        if (step < dt) feedback.realTimeShare = step / dt;
+      }
+      if (!scriptStep) ++clockFrame;
+
+      // The script's commands for this frame, the hotkeys (pressed since the last frame, then the
+      // script's), then the panel and the mouse: all take effect in the frame rendered next.
+      ViewRequests requests;
+      std::string scriptWhere;
+      bool scriptMovedCamera = false;
+      bool quit = false;
+      if (inputs.script) {
+        std::vector<const ScriptCommand*> commands = scriptStep ? std::move(queuedCommands) : inputs.script->at(frame);
+        queuedCommands.clear();
+        for (std::size_t i = 0; i < commands.size(); ++i) {
+          const ScriptCommand* c = commands[i];
+          if (applyScriptCommand(*c, session.config(), session.registry(), session.playback())) {
+            scriptWhere = c->where;
+            // A scripted camera move is a step of a drag: the frame is a preview as the mouse's is.
+            scriptMovedCamera |= c->action == ScriptAction::Orbit || c->action == ScriptAction::Pan ||
+                                 c->action == ScriptAction::Zoom;
+            continue;
+          }
+          if (c->action == ScriptAction::Debug) {
+            debug = c->debug;
+            debugWhere = c->where + ": debug";
+          }
+          if (c->action == ScriptAction::Screenshot) {
+            requests.screenshots.push_back(c->path);
+            queuedCommands.assign(commands.begin() + static_cast<std::ptrdiff_t>(i) + 1, commands.end());
+            break;  // the rest after this frame's render
+          }
+          if (c->action == ScriptAction::SavePreset) requests.presets.push_back(c->path);
+          if (c->action == ScriptAction::Key) hotkeys.push(c->hotkey);
+          if (c->action == ScriptAction::Quit) quit = true;
+        }
+      }
+      for (const Hotkey key : hotkeys.take()) {
+        Playback& clock = session.playback();
+        switch (key) {
+          case Hotkey::PlayPause:
+            clock.playing() ? clock.pause() : clock.play();
+            break;
+          case Hotkey::StepBack:
+          case Hotkey::StepForward:
+            clock.pause();
+            clock.seek(clock.time() + (key == Hotkey::StepForward ? 1.0 : -1.0) / feedback.stepFps);
+            break;
+          case Hotkey::ResetCamera:
+            session.resetCamera();
+            break;
+          case Hotkey::Screenshot:
+            requests.screenshots.push_back(nextNumberedFile(panel.saveBase(session.presetName()), ".png").string());
+            break;
+          case Hotkey::Undo:
+          case Hotkey::Redo:
+            break;  // below, one at a time in the order pressed
+          case Hotkey::TogglePanel:
+            panelVisible = !panelVisible;
+            break;
+          case Hotkey::Quit:
+            quit = true;
+            break;
+        }
+        if (key == Hotkey::Undo || key == Hotkey::Redo) {  // one at a time, in order
+          const std::string what = key == Hotkey::Undo ? session.undo() : session.redo();
+          feedback.status = what.empty() ? std::string("nothing to ") + (key == Hotkey::Undo ? "undo" : "redo")
+                                         : std::string(key == Hotkey::Undo ? "undid " : "redid ") + what;
+          feedback.statusIsError = false;
+        }
+      }
+      if (quit) break;
+      imgui.beginFrame();
+      if (panelVisible) {
+        const std::string status = panel.draw(session, debug, feedback, requests, width, height);
+        if (!status.empty()) {
+          feedback.status = status;
+          feedback.statusIsError = true;
+        }
+        if (session.generation() != generation) {  // a preset was loaded: start its clock as asked
+          generation = session.generation();
+          clockFrame = 0;
+          feedback.status = "loaded " + session.presetName();
+          feedback.statusIsError = false;
+        }
+      }
+      if (requests.undo || requests.redo) {  // the panel's buttons
+        const std::string what = requests.undo ? session.undo() : session.redo();
+        feedback.status = (requests.undo ? "undid " : "redid ") + what;
+        feedback.statusIsError = false;
+      }
+      const ViewLayout layout = layoutView(width, height, panelVisible ? panel.width() : 0, session.config().render.width,
+                                           session.config().render.height);
+      mouseCamera(session, layout.image.height);
+      // While the camera or a widget moves, a preview: the progressive passes keep what they hold
+      // instead of accumulating more (Renderer::holdRefinement); the first still frame refines again.
+      {
+        const ImGuiIO& io = ImGui::GetIO();
+        const bool dragOnImage = !io.WantCaptureMouse && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
+        feedback.preview = scriptMovedCamera || dragOnImage || (!io.WantCaptureMouse && io.MouseWheel != 0.0f) ||
+                           ImGui::IsAnyItemActive();
+        if (feedback.preview) session.renderer().holdRefinement();
+      }
+      // A size set in the panel or a script: the window grows or shrinks to show it at scale 1.
+      const Config& c = session.config();
+      if (c.render.width != imageW || c.render.height != imageH) {
+        imageW = c.render.width;
+        imageH = c.render.height;
+        const auto [w, h] = windowSizeFor(imageW, imageH, panelVisible);
+        glfwSetWindowSize(window, w, h);
+      }
+
+      feedback.frame = session.render();
+      if (!feedback.frame.refused.empty() && !scriptWhere.empty())
+        throw InputError(scriptWhere + ": " + feedback.frame.refused);
+      panel.record(feedback.frame);
+      // The title says what the picture waits for, where the panel may be hidden (F1) or scrolled.
+      std::string title = "Tallow — " + session.presetName();
+      if (const std::optional<AccumulationProgress> p = accumulationProgress(session, feedback.frame.wallMs))
+        title += " — " + p->text();
+      if (title != shownTitle) {
+        glfwSetWindowTitle(window, title.c_str());
+        shownTitle = std::move(title);
+      }
+      const Config& shown = session.config();  // as rendered (a refused change was undone)
+      const GLuint picture = canvas.target(shown.render.width, shown.render.height);
+      feedback.debugNote = debugPass.render(debug, session.renderer(), shown.scene, shown.render, picture,
+                                            shown.render.width, shown.render.height);
+      if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
+      debugWhere.clear();
+      canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
+                     width, height);
+      imgui.endFrame();
+      // An edit ends when nothing is held: a slider released, a drag finished. Until then its
+      // intermediate values are one step in the making.
+      const ImGuiIO& io = ImGui::GetIO();
+      if (!ImGui::IsAnyItemActive() && !io.MouseDown[0] && !io.MouseDown[1] && !io.MouseDown[2]) session.commitEdits();
+      // Sampled a few times a second, and only once the GPU has the count: reading the transform-
+      // feedback query right after the frame that issued it would wait for that frame's extraction.
+      if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS))
+        if (const std::optional<std::size_t> n = session.renderer().triangleCountIfAvailable()) {
+          feedback.triangles = *n;
+          lastTriangles = now;
+        }
+
+      if (options.frames > 0 && frame == options.frames - 1 && queuedCommands.empty()) {
+        for (const std::string& s : options.screenshots) requests.screenshots.push_back(s);
+        if (!options.savePreset.empty()) requests.presets.push_back(options.savePreset);
+      }
+      for (const std::string& file : requests.screenshots) {
+        try {
+          saveScreenshot(file, session, width, height);
+          feedback.status = "wrote " + file;
+          feedback.statusIsError = false;
+        } catch (const std::exception& e) {
+          if (!inputs.script && options.frames == 0) {  // interactive: say it in the panel
+            feedback.status = e.what();
+            feedback.statusIsError = true;
+          } else {
+            throw;
+          }
+        }
+      }
+      for (const std::string& file : requests.presets) {
+        try {
+          session.savePreset(file);
+          feedback.status = "wrote " + file;
+          feedback.statusIsError = false;
+        } catch (const std::exception& e) {
+          if (!inputs.script && options.frames == 0) {
+            feedback.status = e.what();
+            feedback.statusIsError = true;
+          } else {
+            throw;
+          }
+        }
+      }
+
+      if (!options.stats.empty()) {
+        FrameRecord record;
+        record.index = frame;
+        record.timeS = feedback.frame.timeS;
+        record.wallMs = feedback.frame.wallMs;
+        record.gpu = feedback.frame.gpu;
+        nlohmann::json now = session.registry().snapshot(session.config());
+        record.changed = changedParameters(parameters, now);
+        parameters = std::move(now);
+        record.sss = mapsRecord(session.renderer());
+        record.view = layoutJson(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width,
+                                            shown.render.height),
+                                 width, height);
+        record.view["playing"] = session.playback().playing();
+        record.view["real_time_share"] = feedback.realTimeShare;
+        record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
+        record.view["preview"] = feedback.preview;  // input moved: refinement held
+        record.view["panel_visible"] = panelVisible;
+        record.view["can_undo"] = session.history().canUndo();
+        record.view["can_redo"] = session.history().canRedo();
+        // Written once the GPU has the frame's times (a frame or two later), so that the window never
+        // waits on a query; only a GPU as far behind as the timer's ring keeps frames makes it wait.
+        pendingStats.push_back(std::move(record));
+        flushStats(false);
+      }
+      glfwSwapBuffers(window);
+      if (!queuedCommands.empty()) --frame;  // the same script frame again, for the rest of its commands
+    }
+  } catch (const std::exception& e) {
+    if (stats) {
+      try {
+        finishStats("failed", e.what());
+      } catch (const std::exception&) {
+        // The error that stopped the run is the one to report.
+      }
+    }
+    throw;
+  }
+
+  if (!options.stats.empty()) {
+    if (interrupted()) finishStats("interrupted", interruptName());
+    else finishStats("", "");
   }
   return interrupted() ? interruptExitCode() : 0;
 }
