@@ -659,10 +659,16 @@ PixelCensus censusPixels(const Image& image) {
 
 namespace {
 /// One EXR into `tmp` (a fresh temporary), named `path` in errors; returns the sample type written.
+/// The sample type writeExr stores `image` with when asked for `type`: float where a half file would
+/// turn a finite value beyond kHalfMax into infinity.
+ExrPixelType storedType(const Image& image, ExrPixelType type) {
+  return type == ExrPixelType::Half && censusPixels(image).beyondHalf > 0 ? ExrPixelType::Float : type;
+}
+
 ExrPixelType writeExrInto(const std::filesystem::path& tmp, const std::filesystem::path& path, const Image& image,
                           ExrPixelType type, const std::map<std::string, std::string>& attributes) {
   checkPixelCount(path, image);
-  if (type == ExrPixelType::Half && censusPixels(image).beyondHalf > 0) type = ExrPixelType::Float;
+  type = storedType(image, type);
   try {
     const Imf::PixelType pixelType = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
     Imf::Header header = exrHeaderFor(image, pixelType, attributes);
@@ -694,7 +700,7 @@ ExrPixelType writeExrInto(const std::filesystem::path& tmp, const std::filesyste
 }  // namespace
 
 Image storedAsExr(const Image& image, ExrPixelType type) {
-  if (type != ExrPixelType::Half || censusPixels(image).beyondHalf > 0) return image;
+  if (storedType(image, type) != ExrPixelType::Half) return image;
   Image stored = image;
   for (glm::vec4& p : stored.pixels)
     for (int c = 0; c < 4; ++c) p[c] = static_cast<float>(Imath::half(p[c]));

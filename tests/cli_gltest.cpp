@@ -218,24 +218,26 @@ TEST(Cli, ViewOpensAWindowWhenADisplayExists) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out")) << "a window run must not capture";
 }
 
+/// `a` followed by a small, quick blob: 48x32, K = 4 maps of 64², N = 2.
+std::vector<std::string> smallBlob(std::vector<std::string> a) {
+  const std::vector<std::string> common = {"--preset", "blob", "--size", "48x32", "--set", "sss.maps=4",
+                                           "--set", "sss.map_size=64", "--set", "sss.samples=2"};
+  a.insert(a.end(), common.begin(), common.end());
+  return a;
+}
+
 // --accumulate N renders the frame's time N times and writes the last: the same picture as the N-th
 // frame of a capture whose clock a script pauses at frame 0 (a second path through the same
 // accumulation: Playback's pause), bit for bit, since both render the same frames with the same seeds.
 TEST(Cli, AccumulateWritesThePausedSequencesLastFrame) {
   test::TempDir dir;
-  const std::vector<std::string> common = {"--preset", "blob", "--size", "48x32", "--set", "sss.maps=4",
-                                           "--set", "sss.map_size=64", "--set", "sss.samples=2"};
-  auto args = [&](std::vector<std::string> a) {
-    a.insert(a.end(), common.begin(), common.end());
-    return a;
-  };
   const auto accumulated = dir.path() / "accumulated";
-  const auto r = runTallow(args({"capture", "--accumulate", "3", "--out", accumulated.string()}));
+  const auto r = runTallow(smallBlob({"capture", "--accumulate", "3", "--out", accumulated.string()}));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto script = dir.path() / "pause.txt";
   std::ofstream(script) << "frame 0 pause\n";
   const auto paused = dir.path() / "paused";
-  const auto p = runTallow(args({"capture", "--frames", "3", "--script", script.string(), "--out", paused.string()}));
+  const auto p = runTallow(smallBlob({"capture", "--frames", "3", "--script", script.string(), "--out", paused.string()}));
   ASSERT_EQ(p.exitCode, 0) << p.err;
 
   EXPECT_EQ(fileCount(accumulated), 3) << "one frame written";
@@ -261,15 +263,9 @@ TEST(Cli, ACaptureComparedWithItsOwnStoredFrameDiffersByExactlyZero) {
   // compared), and the same capture against it is exactly 0 (the frame compared as its half-float
   // EXR stores it; 2e-4 before), by capture --reference and by compare --max-rel-rmse 0.
   test::TempDir dir;
-  const std::vector<std::string> common = {"--preset", "blob", "--size", "48x32", "--set", "sss.maps=4",
-                                           "--set", "sss.map_size=64", "--set", "sss.samples=2"};
-  auto args = [&](std::vector<std::string> a) {
-    a.insert(a.end(), common.begin(), common.end());
-    return a;
-  };
   const auto golden = dir.path() / "golden", run = dir.path() / "run";
-  ASSERT_EQ(runTallow(args({"capture", "--out", golden.string()})).exitCode, 0);
-  const auto r = runTallow(args({"capture", "--out", run.string(), "--reference", (golden / "frame_0000.exr").string()}));
+  ASSERT_EQ(runTallow(smallBlob({"capture", "--out", golden.string()})).exitCode, 0);
+  const auto r = runTallow(smallBlob({"capture", "--out", run.string(), "--reference", (golden / "frame_0000.exr").string()}));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::ifstream in(run / "stats.json");
   const auto error = nlohmann::json::parse(in)["frames"][0]["reference_error"];

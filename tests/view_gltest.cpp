@@ -41,6 +41,12 @@ std::string tallowLine(std::vector<std::string> args, bool small = true) {
   return line;
 }
 
+/// A file's text (empty when it cannot be read).
+std::string readText(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 json readJson(const std::filesystem::path& file) {
   std::ifstream in(file);
   return json::parse(in);
@@ -314,18 +320,14 @@ TEST(View, ImpossibleDebugViewsEndWithOneLine) {
                                   " 2>err.txt",
                               dir.path());
   EXPECT_NE(r.exitCode, 0);
-  std::ifstream err(dir.path() / "err.txt");
-  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text, "tallow: --debug-view map:99: map 99 does not exist (K = 4)\n");
+  EXPECT_EQ(readText(dir.path() / "err.txt"), "tallow: --debug-view map:99: map 99 does not exist (K = 4)\n");
   dir.write("debug.txt", "frame 1 debug map:2\nframe 2 debug map:7\n");
   r = test::runUnderXvfb(tallowLine({"view", "--preset", "blob", "--frames", "4", "--script", "debug.txt", "--stats",
                                      "stats.json"}) +
                              " 2>err2.txt",
                          dir.path());
   EXPECT_NE(r.exitCode, 0);
-  std::ifstream err2(dir.path() / "err2.txt");
-  const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text2, "tallow: debug.txt:2:9: debug: map 7 does not exist (K = 4)\n");
+  EXPECT_EQ(readText(dir.path() / "err2.txt"), "tallow: debug.txt:2:9: debug: map 7 does not exist (K = 4)\n");
   // --stats written whole, saying where the run stopped and why, with the two frames drawn before.
   const json stats = readJson(dir.path() / "stats.json");
   EXPECT_EQ(stats["run"]["state"], "failed");
@@ -360,10 +362,7 @@ TEST(View, UndoRestoresTheExactPresetAndRedoReappliesTheEdit) {
   EXPECT_EQ(states[5], states[0]);
   EXPECT_FALSE(frames[5]["view"]["can_undo"].get<bool>());
   EXPECT_TRUE(frames[5]["view"]["can_redo"].get<bool>());
-  const auto slurp = [&](const char* name) {
-    std::ifstream in(dir.path() / name);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  };
+  const auto slurp = [&](const char* name) { return readText(dir.path() / name); };
   ASSERT_FALSE(slurp("a.json").empty());
   EXPECT_EQ(slurp("b.json"), slurp("a.json"));
   // Redo: the first edit again, and only it.
