@@ -54,6 +54,10 @@ std::unique_ptr<GlContext> GlContext::create(const ContextOptions& options) {
   throw ContextError("unknown GL backend");
 }
 
+std::unique_ptr<GlContext> GlContext::createShared() const {
+  throw ContextError(std::string(glBackendName(backend())) + ": no shared context for a render thread (a window's only)");
+}
+
 namespace {
 
 const char* str(GLenum name) {

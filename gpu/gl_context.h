@@ -54,6 +54,10 @@ class GlContext {
 
   virtual GlBackend backend() const = 0;
   virtual void makeCurrent() = 0;
+  /// A second context sharing this one's objects (textures, buffers, programs, sync objects; not
+  /// framebuffers or vertex arrays), for a render thread: created and destroyed on this thread,
+  /// made current on the other. GLFW only (an invisible window); throws ContextError elsewhere.
+  virtual std::unique_ptr<GlContext> createShared() const;
   /// The window of a GLFW context, nullptr for headless ones.
   virtual GLFWwindow* window() const { return nullptr; }
   const GlInfo& info() const { return info_; }
@@ -62,6 +66,7 @@ class GlContext {
   GlContext() = default;
   /// Loads glad through `getProcAddress`, checks for 4.5 and fills info_. Throws ContextError.
   void loadGl(void* (*getProcAddress)(const char*), std::string_view backendName, bool debugOutput);
+  void setInfo(const GlInfo& info) { info_ = info; }
 
  private:
   GlInfo info_;

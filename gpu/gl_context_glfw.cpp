@@ -27,6 +27,18 @@ void* glfwProc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAdd
 
 class GlfwContext final : public GlContext {
  public:
+  /// An invisible window whose context shares `share`'s objects (createShared).
+  GlfwContext(GLFWwindow* share, const GlInfo& info) : shared_(true) {
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    window_ = glfwCreateWindow(16, 16, "Tallow render thread", nullptr, share);
+    if (!window_) throw ContextError("glfw: cannot create a shared context for the render thread: " + lastGlfwError());
+    setInfo(info);  // the same driver: glad's entry points serve both contexts
+  }
   explicit GlfwContext(const ContextOptions& options) {
     if (!initGlfw()) throw ContextError("glfw: cannot open a window: " + lastGlfwError());
     glfwDefaultWindowHints();
@@ -57,14 +69,18 @@ class GlfwContext final : public GlContext {
   }
   ~GlfwContext() override {
     if (window_) glfwDestroyWindow(window_);
-    glfwTerminate();
+    if (!shared_) glfwTerminate();
   }
   GlBackend backend() const override { return GlBackend::Glfw; }
+  std::unique_ptr<GlContext> createShared() const override {
+    return std::make_unique<GlfwContext>(window_, info());
+  }
   void makeCurrent() override { glfwMakeContextCurrent(window_); }
   GLFWwindow* window() const override { return window_; }
 
  private:
   GLFWwindow* window_ = nullptr;
+  bool shared_ = false;  ///< made by createShared: GLFW stays initialised for the window it shares
 };
 
 }  // namespace

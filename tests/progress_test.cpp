@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include <csignal>
 #include <cstdio>
 #include <string>
@@ -115,6 +118,28 @@ TEST(Interrupt, AFirstSignalOnlyAsksTheCommandToStop) {
   const InterruptScope again;  // a new scope starts clear
   EXPECT_FALSE(interrupted());
   EXPECT_NO_THROW(throwIfInterrupted());
+}
+
+TEST(Interrupt, TheSameSignalTwiceAtOnceIsOneRequest) {
+  // timeout(1) signals its child and then its whole process group: one request arrives twice,
+  // microseconds apart, and must not count as the second request that ends the process at once.
+  const InterruptScope scope;
+  std::raise(SIGTERM);
+  std::raise(SIGTERM);
+  EXPECT_TRUE(interrupted());
+  EXPECT_EQ(interruptExitCode(), 143);
+}
+
+TEST(InterruptDeathTest, ASecondRequestLaterEndsTheProcessAtOnce) {
+  EXPECT_EXIT(
+      {
+        const InterruptScope scope;
+        std::raise(SIGTERM);
+        std::this_thread::sleep_for(std::chrono::milliseconds(700));  // a user asking again
+        std::raise(SIGTERM);
+        std::exit(0);
+      },
+      testing::KilledBySignal(SIGTERM), "");
 }
 
 }  // namespace

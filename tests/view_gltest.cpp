@@ -206,10 +206,13 @@ TEST(View, KeyTapsAreNotLostAtALowFrameRate) {
   test::TempDir dir;
   // Slow frames (64 samples per texel, 16 maps, the blob moving so the maps restart each frame), and
   // keys tapped as a user does: press and release within a millisecond, inside one frame. Polling
-  // the keys' state once a frame sees neither tap; GLFW's key callback queues both. Without --frames
-  // only the window closing ends the run, so a lost Esc would run until `timeout` (exit 124, after two minutes).
-  const std::string view = "timeout 120 " + tallowLine({"view", "--preset", "blob", "--fps", "30", "--stats",
-                                                         "stats.json", "--set", "sss.samples=64", "--set", "sss.maps=16"});
+  // the keys' state once a frame sees neither tap; GLFW's key callback queues both. Only the window
+  // closing ends the run before its frames, so a lost Esc would run until `timeout` (exit 124, after two minutes).
+  // --frames keeps the window in lockstep, one render per window frame (a window left open renders
+  // on its own thread: View.AWindowLeftOpenAnswersWhileItRenders).
+  const std::string view = "timeout 120 " + tallowLine({"view", "--preset", "blob", "--fps", "30", "--frames", "100000",
+                                                         "--stats", "stats.json", "--set", "sss.samples=64", "--set",
+                                                         "sss.maps=16"});
   // The first tap once frames are being drawn (the window appears before the first frame).
   const std::string keys = std::string("'") + TALLOW_TEST_XKEYS + "' Tallow 120 wait:3000 space:2500 Escape:0";
   const auto r = test::runUnderXvfb(view + " & pid=$!; " + keys + " || { kill $pid; exit 3; }; wait $pid", dir.path());
@@ -227,6 +230,48 @@ TEST(View, KeyTapsAreNotLostAtALowFrameRate) {
     pauses += frames[i - 1]["view"]["playing"].get<bool>() && !frames[i]["view"]["playing"].get<bool>();
   EXPECT_LE(pauses, 1);
 #endif
+}
+
+TEST(View, AWindowLeftOpenAnswersWhileItRenders) {
+  // Issue 40, point 2: a window left open (no --frames, no --script) renders on a thread of its own
+  // and keeps drawing the panel and the last picture meanwhile: the paused candle at 160x90 renders
+  // in about a second a frame on llvmpipe, the window redraws at least ten times a second. In
+  // lockstep every window frame is a render (window_frames = renders), so the ratio tells them apart.
+  SKIP_WITHOUT_XVFB();
+  test::TempDir dir;
+  // SIGTERM after 12 s (timeout(1) sends it twice: to the command and to its group) ends it as a
+  // closed terminal does: the frame in flight is finished and recorded, stats.json written whole.
+  // With a cold shader cache the first frame alone can outlast the 12 s: one frame, still recorded.
+  const auto r = test::runUnderXvfb(
+      "timeout --preserve-status -s TERM 12 " +
+          tallowLine({"view", "--preset", "candle", "--size", "160x90", "--paused", "--stats", "stats.json"}, false),
+      dir.path());
+  EXPECT_EQ(r.exitCode, 143) << r.output;
+  const json stats = readJson(dir.path() / "stats.json");
+  EXPECT_EQ(stats["run"]["state"], "interrupted");
+  const json& frames = stats["frames"];
+  ASSERT_GE(frames.size(), 1u) << r.output;
+  int previousShown = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const json& view = frames[i]["view"];
+    EXPECT_TRUE(view["render_thread"].get<bool>()) << "frame " << i;
+    EXPECT_FALSE(view["playing"].get<bool>()) << "frame " << i;
+    EXPECT_EQ(frames[i]["time_s"], frames[0]["time_s"]) << "paused";
+    EXPECT_GE(view["window_frames"].get<int>(), previousShown) << "frame " << i;
+    previousShown = view["window_frames"].get<int>();
+    // The maps accumulate one frame per render, as in lockstep (no input: no preview), or restart
+    // where sss.maps=auto chose another K.
+    if (i > 0) {
+      const json& sss = frames[i]["sss"];
+      const json& before = frames[i - 1]["sss"];
+      EXPECT_EQ(sss["frames_accumulated"].get<int>(),
+                sss["maps"] == before["maps"] ? std::min(before["frames_accumulated"].get<int>() + 1, 64) : 1)
+          << "frame " << i;
+    }
+  }
+  const int windowFrames = frames.back()["view"]["window_frames"].get<int>();
+  std::printf("[ view    ] %zu renders, %d window frames in 12 s\n", frames.size(), windowFrames);
+  EXPECT_GE(windowFrames, 3 * static_cast<int>(frames.size())) << "the window waited for the renders";
 }
 
 TEST(View, ASlowWindowPlaysSlowerInsteadOfSkipping) {

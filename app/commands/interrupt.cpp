@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <ctime>
 #include <cstring>
 #include <iterator>
 
@@ -10,6 +11,16 @@ namespace tallow::app {
 namespace {
 
 volatile std::sig_atomic_t gSignal = 0;
+// When the first request came (CLOCK_MONOTONIC, ms): timeout(1) signals its child and then its
+// whole process group, so one request arrives twice within microseconds.
+volatile long long gFirstMs = 0;
+constexpr long long kSameRequestMs = 500;
+
+long long monotonicMs() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);  // async-signal-safe (POSIX)
+  return static_cast<long long>(t.tv_sec) * 1000 + t.tv_nsec / 1'000'000;
+}
 // Written from the handler with write(2), the async-signal-safe way to say something.
 constexpr char kNotice[] =
     "\ntallow: stopping: finishing the step in hand and writing what is done (again to stop at once)\n";
@@ -19,10 +30,13 @@ constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 void onSignal(int signal) {
   if (gSignal == 0) {
     gSignal = signal;
+    gFirstMs = monotonicMs();
     const ssize_t ignored = ::write(STDERR_FILENO, kNotice, sizeof kNotice - 1);
     (void)ignored;
     return;
   }
+  // The same request again (timeout's second copy, to the process group): already in hand.
+  if (signal == gSignal && monotonicMs() - gFirstMs < kSameRequestMs) return;
   // The second request: the default action (the process ends with that signal), now.
   std::signal(signal, SIG_DFL);
   std::raise(signal);

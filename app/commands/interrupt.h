@@ -5,7 +5,8 @@
 // (capture: after the frame in hand; reference: after the pass in hand; bench: between frames),
 // writes what is done whole, and exits with 128 + the signal (130, 143, 129), as a shell reports a
 // command the signal ended. A second signal ends the process at once, as if no handler were
-// installed, for a user who does not want to wait for the step in hand.
+// installed, for a user who does not want to wait for the step in hand; the same signal again within
+// half a second is the same request (timeout(1) sends it to the command and then to its group).
 #include <exception>
 
 namespace tallow::app {

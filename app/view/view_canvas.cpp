@@ -25,17 +25,21 @@ GLuint ViewCanvas::target(int width, int height) {
 }
 
 void ViewCanvas::present(const ViewLayout& layout, int windowW, int windowH) {
+  presentPicture(framebuffer_.id(), width_, height_, layout, windowW, windowH);
+}
+
+void presentPicture(GLuint framebuffer, int width, int height, const ViewLayout& layout, int windowW, int windowH) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, windowW, windowH);
   glDisable(GL_SCISSOR_TEST);  // a blit obeys the scissor test
   glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
   glClear(GL_COLOR_BUFFER_BIT);
-  if (layout.image.empty() || !framebuffer_.id()) return;
+  if (layout.image.empty() || !framebuffer) return;
   // Layout boxes count rows from the top; GL's from the bottom.
   const PixelBox& b = layout.image;
   const int y0 = windowH - (b.y + b.height), y1 = windowH - b.y;
-  const bool exact = b.width == width_ && b.height == height_;
-  glBlitNamedFramebuffer(framebuffer_.id(), 0, 0, 0, width_, height_, b.x, y0, b.x + b.width, y1, GL_COLOR_BUFFER_BIT,
+  const bool exact = b.width == width && b.height == height;
+  glBlitNamedFramebuffer(framebuffer, 0, 0, 0, width, height, b.x, y0, b.x + b.width, y1, GL_COLOR_BUFFER_BIT,
                          exact ? GL_NEAREST : GL_LINEAR);
 }
 

@@ -7,12 +7,20 @@
 
 namespace tallow::app {
 
+/// Clears the window (windowW × windowH) and copies the width × height picture that `framebuffer`
+/// reads (0: none yet) into `layout.image`.
+void presentPicture(GLuint framebuffer, int width, int height, const ViewLayout& layout, int windowW, int windowH);
+
 class ViewCanvas {
  public:
   /// The framebuffer to draw the picture into, width × height (reallocated when the size changes).
   GLuint target(int width, int height);
   /// Clears the window (width × height) and copies the picture into `layout.image`.
   void present(const ViewLayout& layout, int windowW, int windowH);
+  /// The picture's texture (0 before target()), for a context that shares it.
+  GLuint texture() const { return colour_.id(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
 
  private:
   gpu::Texture colour_;

@@ -22,6 +22,7 @@
 #include "app/playback/scene_controls.h"
 #include "app/playback/view_script.h"
 #include "app/view/numbered_file.h"
+#include "app/view/render_worker.h"
 #include "app/view/view_canvas.h"
 #include "app/view/view_hotkeys.h"
 #include "app/view/view_layout.h"
@@ -45,6 +46,9 @@ constexpr int kFallbackAccumulate = 16;
 using Clock = std::chrono::steady_clock;
 /// Seconds between two counts of the triangles (the count waits for the GPU).
 constexpr double kTriangleSampleS = 0.25;
+/// With the render thread, the window redraws at least this often without input (the panel's
+/// clock and graphs), and at once on input or a finished frame.
+constexpr double kPanelRedrawS = 0.1;
 /// Frames per second of the ← and → steps without --fps (capture's default rate).
 constexpr double kStepFps = 30.0;
 /// --max-step's largest value: a cap beyond a minute is a typo.
@@ -145,12 +149,8 @@ CheckedInputs checkInputs(const ViewOptions& options) {
   return in;
 }
 
-/// One frame that says what the window is waiting for, drawn before the shaders compile.
-void showStartupNotice(gpu::ImGuiLayer& imgui, ViewCanvas& canvas, GLFWwindow* window, const std::string& preset) {
-  int width = 0, height = 0;
-  glfwPollEvents();
-  glfwGetFramebufferSize(window, &width, &height);
-  imgui.beginFrame();
+/// The notice of the first frame, centred in the window (between ImGui's beginFrame and endFrame).
+void drawFirstFrameNotice(const std::string& preset) {
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(ImVec2(viewport->Size.x * 0.5f, viewport->Size.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::Begin("##startup", nullptr,
@@ -158,6 +158,15 @@ void showStartupNotice(gpu::ImGuiLayer& imgui, ViewCanvas& canvas, GLFWwindow* w
   ImGui::Text("Tallow: compiling shaders and drawing the first frame of %s ...", preset.c_str());
   ImGui::TextDisabled("seconds on a GPU, up to a minute on a software renderer (llvmpipe)");
   ImGui::End();
+}
+
+/// One frame that says what the window is waiting for, drawn before the shaders compile.
+void showStartupNotice(gpu::ImGuiLayer& imgui, ViewCanvas& canvas, GLFWwindow* window, const std::string& preset) {
+  int width = 0, height = 0;
+  glfwPollEvents();
+  glfwGetFramebufferSize(window, &width, &height);
+  imgui.beginFrame();
+  drawFirstFrameNotice(preset);
   canvas.present(ViewLayout{}, width, height);  // the background alone
   imgui.endFrame();
   glfwSwapBuffers(window);
@@ -196,6 +205,9 @@ int runView(const ViewOptions& options) {
   }
 
   bool panelVisible = !options.hidePanel;
+  // --frames and --script run in lockstep, one render per window frame, so that their frames are the
+  // same on every machine; a window left open renders on a thread of its own and answers at once.
+  bool lockstep = options.frames > 0 || inputs.script.has_value();
   gpu::ContextOptions contextOptions;
   contextOptions.backend = gpu::GlBackend::Glfw;
   contextOptions.swapInterval = options.vsync ? 1 : 0;
@@ -210,9 +222,21 @@ int runView(const ViewOptions& options) {
   showStartupNotice(imgui, canvas, window,
                     options.scene.preset.empty() ? defaultPresetName() : options.scene.preset);
   const gpu::ShaderLibrary shaders = makeShaderLibrary(options.scene.shaderDir);
-  ViewSession session(options.scene, shaders);
-  sss::DebugViewPass debugPass(shaders);
-  if (inputs.reference) debugPass.setReference(*inputs.reference);
+  std::optional<RenderWorker> worker;
+  if (!lockstep) {
+    try {
+      worker.emplace(*context, shaders, inputs.reference);
+    } catch (const gpu::ContextError& e) {  // no second context: the window renders its frames itself
+      std::fprintf(stderr, "tallow: %s; rendering in the window's thread\n", e.what());
+      lockstep = true;
+    }
+  }
+  ViewSession session(options.scene, shaders, lockstep);
+  std::optional<sss::DebugViewPass> debugPass;  // lockstep: drawn here; else on the render thread
+  if (lockstep) {
+    debugPass.emplace(shaders);
+    if (inputs.reference) debugPass->setReference(*inputs.reference);
+  }
   sss::DebugView debug = inputs.debug;
   ViewPanel panel;
   ViewFeedback feedback;
@@ -224,11 +248,15 @@ int runView(const ViewOptions& options) {
   if (options.paused) session.playback().pause();
   int generation = session.generation();
   int clockFrame = 0;  // frames on this scene's clock (--fps)
+  int renders = 0;     // frames rendered (the render thread's, or the window's in lockstep)
+  int windowFrames = 0;  // pictures shown
   std::string shownTitle = contextOptions.title;
   std::vector<const ScriptCommand*> queuedCommands;  // the script's commands after a screenshot, run next
   // Where the debug view shown was asked for (--debug-view, a script's line) until a frame shows
   // it: a view that cannot be shown (map:99 with K = 12) is refused there, not shown as the image.
   std::string debugWhere = options.debugView.empty() ? "" : "--debug-view " + options.debugView;
+  std::vector<std::string> radianceFiles;  // .exr screenshots for the render thread's next frame
+  bool movedSinceJob = false;              // input moved since the last job: the next is a preview
 
   RunRecord run;
   run.command = "view";
@@ -246,8 +274,12 @@ int runView(const ViewOptions& options) {
   std::deque<FrameRecord> pendingStats;
   const auto flushStats = [&](bool all) {
     while (!pendingStats.empty()) {
-      const bool mustWait = all || pendingStats.size() + 1 >= gpu::GpuTimer::kRing;
-      if (!session.renderer().resolveTimings(pendingStats.front().gpu, mustWait) && !mustWait) break;
+      // The render thread read its frames' times before handing them over; here they are read
+      // without a wait unless the timer's ring is full.
+      if (session.rendersHere()) {
+        const bool mustWait = all || pendingStats.size() + 1 >= gpu::GpuTimer::kRing;
+        if (!session.renderer().resolveTimings(pendingStats.front().gpu, mustWait) && !mustWait) break;
+      }
       stats->append(run, pendingStats.front());
       pendingStats.pop_front();
     }
@@ -257,6 +289,79 @@ int runView(const ViewOptions& options) {
   auto lastTriangles = last - std::chrono::hours(1);
   int width = 0, height = 0;
   int imageW = session.config().render.width, imageH = session.config().render.height;
+  // The animation clock before a render: by --fps, or by the wall time since the last render, at
+  // most --max-step (a slow machine plays slower instead of skipping).
+  const auto advanceClock = [&](bool hold) {
+    const auto now = Clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    if (session.generation() != generation) {  // the panel loaded another preset
+      generation = session.generation();
+      clockFrame = 0;
+    }
+    feedback.realTimeShare = 1.0;
+    if (hold) return;
+    if (options.fps > 0.0) {
+      session.playback().setFrame(clockFrame, options.fps);
+    } else if (renders > 0) {
+      const double step = cappedStep(dt, options.maxStepS);
+      session.playback().advance(step);
+      if (step < dt) feedback.realTimeShare = step / dt;
+    }
+    ++clockFrame;
+  };
+  // A frame's record in --stats, once it is rendered.
+  const auto recordFrame = [&](int index, const ViewSession::Frame& frame, const Config& shown, bool playing,
+                               bool scriptStep) {
+    FrameRecord record;
+    record.index = index;
+    record.timeS = frame.timeS;
+    record.wallMs = frame.wallMs;
+    record.gpu = frame.gpu;
+    nlohmann::json now = session.registry().snapshot(shown);
+    record.changed = changedParameters(parameters, now);
+    parameters = std::move(now);
+    record.sss = session.summary().mapsRecord;
+    record.view = layoutJson(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width,
+                                        shown.render.height),
+                             width, height);
+    record.view["playing"] = playing;
+    record.view["real_time_share"] = feedback.realTimeShare;
+    record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
+    record.view["preview"] = feedback.preview;  // input moved: refinement held
+    record.view["panel_visible"] = panelVisible;
+    record.view["can_undo"] = session.history().canUndo();
+    record.view["can_redo"] = session.history().canRedo();
+    record.view["render_thread"] = !lockstep;
+    record.view["window_frames"] = windowFrames;  // pictures shown so far (more than renders on the render thread)
+    // Written once the GPU has the frame's times (a frame or two later), so that the window never
+    // waits on a query; only a GPU as far behind as the timer's ring keeps frames makes it wait.
+    pendingStats.push_back(std::move(record));
+    flushStats(false);
+  };
+  // The render thread's frame, taken: the panel, the title and the picture follow it.
+  const auto takeResult = [&](RenderResult r) {
+    if (r.generation != session.generation()) return;  // a scene replaced meanwhile
+    if (!r.error.empty()) {
+      feedback.status = r.error;
+      feedback.statusIsError = true;
+    }
+    for (const std::string& file : r.wrote) {
+      feedback.status = "wrote " + file;
+      feedback.statusIsError = false;
+    }
+    if (r.slot < 0) return;
+    ++renders;
+    if (!r.frame.refused.empty()) session.restore(r.config);  // as ViewSession::render does
+    session.setSummary(std::move(r.summary));
+    feedback.frame = r.frame;
+    feedback.debugNote = r.debugNote;
+    if (r.triangles) feedback.triangles = r.triangles;
+    panel.record(feedback.frame);
+    if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
+    debugWhere.clear();
+    if (stats) recordFrame(renders - 1, feedback.frame, r.config, r.playing, false);
+  };
   // stats.json written whole: `state` empty keeps the writer's own (complete), else with the reason.
   const auto finishStats = [&](const std::string& state, const std::string& reason) {
     flushStats(true);
@@ -264,8 +369,8 @@ int runView(const ViewOptions& options) {
     run.presetPath = session.presetPath().string();
     run.width = session.config().render.width;
     run.height = session.config().render.height;
-    run.gpuBytes = session.renderer().gpuBytes();
-    run.triangles = session.renderer().triangleCount();
+    run.gpuBytes = session.summary().gpuBytes;
+    run.triangles = session.rendersHere() ? session.renderer().triangleCount() : feedback.triangles.value_or(0);
     if (!state.empty()) {
       run.state = state;
       run.stopReason = reason;
@@ -276,7 +381,10 @@ int runView(const ViewOptions& options) {
   // it with --stats written whole, saying where and why it stopped, as capture does.
   try {
     for (int frame = 0; options.frames == 0 || frame < options.frames; ++frame) {
-      glfwPollEvents();
+      // On the render thread's pictures the window waits for input, a finished frame (the thread
+      // posts an empty event) or the next redraw of the panel, whichever comes first.
+      if (lockstep) glfwPollEvents();
+      else glfwWaitEventsTimeout(kPanelRedrawS);
       // SIGINT, SIGTERM or SIGHUP (a closed terminal) end the window as its close button does, with
       // --stats written whole and saying so.
       if (glfwWindowShouldClose(window) || interrupted()) break;
@@ -286,27 +394,10 @@ int runView(const ViewOptions& options) {
         glfwWaitEvents();
         continue;
       }
-      const auto now = Clock::now();
-      const double dt = std::chrono::duration<double>(now - last).count();
-      last = now;
-      if (session.generation() != generation) {  // the panel loaded another preset
-        generation = session.generation();
-        clockFrame = 0;
-      }
       // A script's commands after a screenshot in the same frame run in a render of their own at the
       // same animation time, so that the screenshot shows the scene as the script stood at its line.
       const bool scriptStep = !queuedCommands.empty();
-      feedback.realTimeShare = 1.0;
-      if (scriptStep) {
-        // the clock holds
-      } else if (options.fps > 0.0) {
-        session.playback().setFrame(clockFrame, options.fps);
-      } else if (frame > 0) {
-        const double step = cappedStep(dt, options.maxStepS);
-        session.playback().advance(step);
-        if (step < dt) feedback.realTimeShare = step / dt;
-      }
-      if (!scriptStep) ++clockFrame;
+      if (lockstep) advanceClock(scriptStep);
 
       // The script's commands for this frame, the hotkeys (pressed since the last frame, then the
       // script's), then the panel and the mouse: all take effect in the frame rendered next.
@@ -375,6 +466,9 @@ int runView(const ViewOptions& options) {
         }
       }
       if (quit) break;
+      // The render thread's finished frame, if any: the panel below shows its figures.
+      if (worker)
+        if (std::optional<RenderResult> r = worker->take()) takeResult(std::move(*r));
       imgui.beginFrame();
       if (panelVisible) {
         const std::string status = panel.draw(session, debug, feedback, requests, width, height);
@@ -404,7 +498,8 @@ int runView(const ViewOptions& options) {
         const bool dragOnImage = !io.WantCaptureMouse && (io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2]);
         feedback.preview = scriptMovedCamera || dragOnImage || (!io.WantCaptureMouse && io.MouseWheel != 0.0f) ||
                            ImGui::IsAnyItemActive();
-        if (feedback.preview) session.renderer().holdRefinement();
+        if (feedback.preview && lockstep) session.renderer().holdRefinement();
+        movedSinceJob |= feedback.preview;
       }
       // A size set in the panel or a script: the window grows or shrinks to show it at scale 1.
       const Config& c = session.config();
@@ -414,11 +509,54 @@ int runView(const ViewOptions& options) {
         const auto [w, h] = windowSizeFor(imageW, imageH, panelVisible);
         glfwSetWindowSize(window, w, h);
       }
+      // PNG screenshots copy the window below; EXR ones the radiance, which the render thread holds.
+      if (options.frames > 0 && frame == options.frames - 1 && queuedCommands.empty()) {
+        for (const std::string& s : options.screenshots) requests.screenshots.push_back(s);
+        if (!options.savePreset.empty()) requests.presets.push_back(options.savePreset);
+      }
+      if (worker)
+        std::erase_if(requests.screenshots, [&](const std::string& file) {
+          if (std::filesystem::path(file).extension() != ".exr") return false;
+          radianceFiles.push_back(file);
+          return true;
+        });
 
-      feedback.frame = session.render();
-      if (!feedback.frame.refused.empty() && !scriptWhere.empty())
-        throw InputError(scriptWhere + ": " + feedback.frame.refused);
-      panel.record(feedback.frame);
+      if (lockstep) {
+        feedback.frame = session.render();
+        ++renders;
+        if (!feedback.frame.refused.empty() && !scriptWhere.empty())
+          throw InputError(scriptWhere + ": " + feedback.frame.refused);
+        panel.record(feedback.frame);
+        const Config& shown = session.config();  // as rendered (a refused change was undone)
+        const GLuint picture = canvas.target(shown.render.width, shown.render.height);
+        feedback.debugNote = debugPass->render(debug, session.renderer(), shown.scene, shown.render, picture,
+                                               shown.render.width, shown.render.height);
+        if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
+        debugWhere.clear();
+        canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
+                       width, height);
+      } else {
+        if (!worker->busy()) {  // the thread is free: the next frame, as things stand now
+          advanceClock(false);
+          RenderJob job;
+          job.generation = session.generation();
+          job.config = session.config();
+          job.timeS = session.playback().time();
+          job.playing = session.playback().playing();
+          job.holdRefinement = movedSinceJob;
+          job.debug = debug;
+          job.radianceFiles = std::move(radianceFiles);
+          radianceFiles.clear();
+          job.presetName = session.presetName();
+          job.measure = stats.has_value();
+          worker->post(std::move(job));
+          movedSinceJob = false;
+        }
+        const Config& shown = session.config();
+        worker->present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
+                        width, height);
+        if (renders == 0) drawFirstFrameNotice(session.presetName());
+      }
       // The title says what the picture waits for, where the panel may be hidden (F1) or scrolled.
       std::string title = "Tallow — " + session.presetName();
       if (const std::optional<AccumulationProgress> p = accumulationProgress(session, feedback.frame.wallMs))
@@ -427,14 +565,6 @@ int runView(const ViewOptions& options) {
         glfwSetWindowTitle(window, title.c_str());
         shownTitle = std::move(title);
       }
-      const Config& shown = session.config();  // as rendered (a refused change was undone)
-      const GLuint picture = canvas.target(shown.render.width, shown.render.height);
-      feedback.debugNote = debugPass.render(debug, session.renderer(), shown.scene, shown.render, picture,
-                                            shown.render.width, shown.render.height);
-      if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
-      debugWhere.clear();
-      canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
-                     width, height);
       imgui.endFrame();
       // An edit ends when nothing is held: a slider released, a drag finished. Until then its
       // intermediate values are one step in the making.
@@ -442,16 +572,13 @@ int runView(const ViewOptions& options) {
       if (!ImGui::IsAnyItemActive() && !io.MouseDown[0] && !io.MouseDown[1] && !io.MouseDown[2]) session.commitEdits();
       // Sampled a few times a second, and only once the GPU has the count: reading the transform-
       // feedback query right after the frame that issued it would wait for that frame's extraction.
-      if (now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS))
+      const auto now = Clock::now();
+      if (lockstep && now - lastTriangles > std::chrono::duration<double>(kTriangleSampleS))
         if (const std::optional<std::size_t> n = session.renderer().triangleCountIfAvailable()) {
           feedback.triangles = *n;
           lastTriangles = now;
         }
 
-      if (options.frames > 0 && frame == options.frames - 1 && queuedCommands.empty()) {
-        for (const std::string& s : options.screenshots) requests.screenshots.push_back(s);
-        if (!options.savePreset.empty()) requests.presets.push_back(options.savePreset);
-      }
       for (const std::string& file : requests.screenshots) {
         try {
           saveScreenshot(file, session, width, height);
@@ -481,33 +608,15 @@ int runView(const ViewOptions& options) {
         }
       }
 
-      if (!options.stats.empty()) {
-        FrameRecord record;
-        record.index = frame;
-        record.timeS = feedback.frame.timeS;
-        record.wallMs = feedback.frame.wallMs;
-        record.gpu = feedback.frame.gpu;
-        nlohmann::json now = session.registry().snapshot(session.config());
-        record.changed = changedParameters(parameters, now);
-        parameters = std::move(now);
-        record.sss = mapsRecord(session.renderer());
-        record.view = layoutJson(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width,
-                                            shown.render.height),
-                                 width, height);
-        record.view["playing"] = session.playback().playing();
-        record.view["real_time_share"] = feedback.realTimeShare;
-        record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
-        record.view["preview"] = feedback.preview;  // input moved: refinement held
-        record.view["panel_visible"] = panelVisible;
-        record.view["can_undo"] = session.history().canUndo();
-        record.view["can_redo"] = session.history().canRedo();
-        // Written once the GPU has the frame's times (a frame or two later), so that the window never
-        // waits on a query; only a GPU as far behind as the timer's ring keeps frames makes it wait.
-        pendingStats.push_back(std::move(record));
-        flushStats(false);
-      }
+      ++windowFrames;
+      if (lockstep && stats) recordFrame(frame, feedback.frame, session.config(), session.playback().playing(), scriptStep);
       glfwSwapBuffers(window);
       if (!queuedCommands.empty()) --frame;  // the same script frame again, for the rest of its commands
+    }
+    // The frame in flight on the render thread is finished and recorded, as the window's last.
+    if (worker && stats) {
+      worker->finish();
+      if (std::optional<RenderResult> r = worker->take()) takeResult(std::move(*r));
     }
   } catch (const std::exception& e) {
     if (stats) {

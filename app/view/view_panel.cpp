@@ -90,11 +90,12 @@ std::string AccumulationProgress::text() const {
 }
 
 std::optional<AccumulationProgress> accumulationProgress(const ViewSession& session, double frameMs) {
-  const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
+  const RenderSummary& r = session.summary();
   const Config& c = session.config();
-  if (!maps || !sss::RadiosityMaps::applies(c.scene, c.render) || maps->frames() >= c.render.sss.frames) return std::nullopt;
+  if (!r.hasMaps || !sss::RadiosityMaps::applies(c.scene, c.render) || r.mapFrames >= c.render.sss.frames)
+    return std::nullopt;
   AccumulationProgress p;
-  p.done = maps->frames();
+  p.done = r.mapFrames;
   p.total = c.render.sss.frames;
   if (frameMs > 0.0) p.secondsLeft = (p.total - p.done) * frameMs / 1000.0;
   return p;
@@ -254,18 +255,16 @@ void ViewPanel::drawFeedback(const ViewSession& session, const ViewFeedback& fee
   else
     ImGui::Text("wall %.1f ms (%.3g fps)   CPU %.1f ms   GPU (not read yet)", f.wallMs, 1000.0 / f.wallMs, f.gpu.cpuTotalMs);
   drawTimingGraph();
-  const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
-  if (maps && sss::RadiosityMaps::applies(session.config().scene, session.config().render))
-    ImGui::Text("maps: K %zu, %d of %d frames accumulated", maps->views().size(), maps->frames(),
-                session.config().render.sss.frames);
+  const RenderSummary& r = session.summary();
+  if (r.hasMaps && sss::RadiosityMaps::applies(session.config().scene, session.config().render))
+    ImGui::Text("maps: K %d, %d of %d frames accumulated", r.maps, r.mapFrames, session.config().render.sss.frames);
   if (feedback.triangles)
-    ImGui::Text("GPU memory %s   triangles %zu", megabytes(session.renderer().gpuBytes()).c_str(), *feedback.triangles);
+    ImGui::Text("GPU memory %s   triangles %zu", megabytes(r.gpuBytes).c_str(), *feedback.triangles);
   else
-    ImGui::Text("GPU memory %s   triangles (not counted yet)", megabytes(session.renderer().gpuBytes()).c_str());
+    ImGui::Text("GPU memory %s   triangles (not counted yet)", megabytes(r.gpuBytes).c_str());
   if (!f.refused.empty()) statusLine("refused: " + f.refused, true);
-  if (ImGui::TreeNode("frame plan")) {
-    const Config& c = session.config();
-    for (const sss::PlannedPass& p : session.renderer().planFrame(c.scene, c.render, session.playback().time())) {
+  if (ImGui::TreeNode("frame plan")) {  // of the frame shown
+    for (const sss::PlannedPass& p : r.plan) {
       ImGui::BulletText("%s", p.name.c_str());
       ImGui::SameLine();
       ImGui::TextDisabled("(?)");
@@ -358,8 +357,7 @@ void ViewPanel::drawDebugView(const ViewSession& session, sss::DebugView& debug,
       if (layer && layer->cube) ImGui::SliderInt("cube face", &debug.layer, 0, 5);
     }
   } else if (debug.kind == sss::DebugViewKind::Map) {
-    const sss::RadiosityMaps* maps = session.renderer().module<sss::RadiosityMaps>();
-    const int k = maps ? maps->maps().depth() : 0;
+    const int k = session.summary().mapLayers;
     if (k > 0) {
       ImGui::SliderInt("map k", &debug.layer, 0, k - 1);
       debug.layer = std::clamp(debug.layer, 0, k - 1);

@@ -5,6 +5,7 @@
 
 #include "app/config/input_error.h"
 #include "app/config/params.h"
+#include "app/commands/frame_stats.h"
 #include "app/config/preset_writer.h"
 #include "app/playback/scene_controls.h"
 #include "sss/maps/radiosity_maps.h"
@@ -12,11 +13,43 @@
 
 namespace tallow::app {
 
-ViewSession::ViewSession(const SceneOptions& options, const gpu::ShaderLibrary& shaders)
-    : shaders_(shaders), options_(options), loaded_(loadScene(options)), registry_(parameterRegistry(loaded_.materials)) {
-  auto renderer = std::make_unique<sss::Renderer>(shaders_, loaded_.config.scene, loaded_.config.render);
+RenderSummary summarize(const sss::Renderer& renderer, const Config& config, double timeS) {
+  RenderSummary s;
+  if (const sss::RadiosityMaps* maps = renderer.module<sss::RadiosityMaps>()) {
+    s.hasMaps = true;
+    s.maps = static_cast<int>(maps->views().size());
+    s.mapFrames = maps->frames();
+    s.mapLayers = maps->maps().depth();
+    s.mapSize = maps->mapSize();
+    s.lightMapSize = maps->lightMapSize();
+  }
+  s.chosenMaps = renderer.chosenMapCount(config.scene, config.render).value_or(0);
+  s.gpuBytes = renderer.gpuBytes();
+  s.plan = renderer.planFrame(config.scene, config.render, timeS);
+  s.mapsRecord = mapsRecord(renderer);
+  return s;
+}
+
+ViewSession::ViewSession(const SceneOptions& options, const gpu::ShaderLibrary& shaders, bool rendersHere)
+    : shaders_(shaders),
+      rendersHere_(rendersHere),
+      options_(options),
+      loaded_(loadScene(options)),
+      registry_(parameterRegistry(loaded_.materials)) {
+  std::unique_ptr<sss::Renderer> renderer;
+  if (rendersHere_) renderer = std::make_unique<sss::Renderer>(shaders_, loaded_.config.scene, loaded_.config.render);
   LoadedScene loaded = std::move(loaded_);
   start(std::move(loaded), std::move(renderer));
+}
+
+sss::Renderer& ViewSession::renderer() {
+  if (!renderer_) throw std::logic_error("ViewSession::renderer: the render thread owns the renderer");
+  return *renderer_;
+}
+
+const sss::Renderer& ViewSession::renderer() const {
+  if (!renderer_) throw std::logic_error("ViewSession::renderer: the render thread owns the renderer");
+  return *renderer_;
 }
 
 void ViewSession::start(LoadedScene loaded, std::unique_ptr<sss::Renderer> renderer) {
@@ -27,6 +60,7 @@ void ViewSession::start(LoadedScene loaded, std::unique_ptr<sss::Renderer> rende
   playback_.emplace(scene.startS, scene.durationS, scene.loop);
   home_ = scene.camera;
   lastGood_ = loaded_.config;
+  summary_ = RenderSummary();
   presetValues_ = registry_.snapshot(loaded_.config);
   history_.emplace(registry_, loaded_.config);
   ++generation_;
@@ -39,7 +73,8 @@ std::string ViewSession::loadPreset(const std::string& nameOrPath) {
   next.size = std::to_string(loaded_.config.render.width) + "x" + std::to_string(loaded_.config.render.height);
   try {
     LoadedScene loaded = loadScene(next);
-    auto renderer = std::make_unique<sss::Renderer>(shaders_, loaded.config.scene, loaded.config.render);
+    std::unique_ptr<sss::Renderer> renderer;  // the render thread builds its own on the new generation
+    if (rendersHere_) renderer = std::make_unique<sss::Renderer>(shaders_, loaded.config.scene, loaded.config.render);
     renderer_.reset();  // free the old scene's GPU memory before the new one fills it
     start(std::move(loaded), std::move(renderer));
     return "";
@@ -49,11 +84,10 @@ std::string ViewSession::loadPreset(const std::string& nameOrPath) {
 }
 
 std::optional<std::int64_t> ViewSession::autoChoice(std::string_view key) const {
-  const sss::RadiosityMaps* maps = renderer_->module<sss::RadiosityMaps>();
   int chosen = 0;
-  if (key == "sss.maps") chosen = renderer_->chosenMapCount(loaded_.config.scene, loaded_.config.render).value_or(0);
-  else if (key == "sss.map_size" && maps) chosen = maps->mapSize();
-  else if (key == "sss.light_map_size" && maps) chosen = maps->lightMapSize();
+  if (key == "sss.maps") chosen = summary_.chosenMaps;
+  else if (key == "sss.map_size" && summary_.hasMaps) chosen = summary_.mapSize;
+  else if (key == "sss.light_map_size" && summary_.hasMaps) chosen = summary_.lightMapSize;
   if (chosen <= 0) return std::nullopt;
   return chosen;
 }
@@ -104,6 +138,7 @@ ViewSession::Frame ViewSession::render() {
   }
   frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame.shown = renderer_->latestTimings();
+  summary_ = summarize(*renderer_, config, frame.timeS);
   return frame;
 }
 
@@ -114,9 +149,14 @@ void ViewSession::savePreset(const std::filesystem::path& file) const {
   writePreset(file, presetText_, loaded_.config, registry_, state);
 }
 
+void writeRadiance(const std::filesystem::path& file, const sss::Renderer& renderer, const std::string& presetName,
+                   double timeS) {
+  gpu::writeExr(file, renderer.readRadiance(), gpu::ExrPixelType::Half,
+                {{"tallow.preset", presetName}, {"tallow.time_s", formatNumber(timeS)}});
+}
+
 void ViewSession::saveRadiance(const std::filesystem::path& file) const {
-  gpu::writeExr(file, renderer_->readRadiance(), gpu::ExrPixelType::Half,
-                {{"tallow.preset", loaded_.presetName}, {"tallow.time_s", formatNumber(playback_->time())}});
+  writeRadiance(file, renderer(), loaded_.presetName, playback_->time());
 }
 
 }  // namespace tallow::app

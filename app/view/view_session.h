@@ -10,27 +10,58 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "app/config/edit_history.h"
 #include "app/config/registry.h"
 #include "app/config/setup.h"
 #include "app/playback/playback.h"
+#include "sss/frame_plan.h"
 #include "sss/renderer.h"
 
 namespace tallow::app {
 
+/// What the window shows of the renderer after a frame (the panel, the title, the "auto" choices):
+/// copied from it once per render, so that the panel reads it while the next frame renders on the
+/// render thread (app/view/render_worker.h) as well as in the lockstep loop.
+struct RenderSummary {
+  bool hasMaps = false;  ///< the renderer keeps radiosity maps (whether they apply: the config's)
+  int maps = 0;          ///< K, the maps in use
+  int mapFrames = 0;     ///< frames accumulated into them
+  int mapLayers = 0;     ///< layers of the maps' array texture (the debug view's "map k")
+  int mapSize = 0, lightMapSize = 0;  ///< the sizes in use
+  int chosenMaps = 0;    ///< what sss.maps=auto chose (0: none)
+  std::size_t gpuBytes = 0;
+  std::vector<sss::PlannedPass> plan;  ///< the passes of the frame rendered, and why
+  nlohmann::json mapsRecord;           ///< stats.json's "sss" of the frame (frame_stats.h mapsRecord)
+};
+/// The summary of `renderer` after rendering `config` at `timeS`.
+RenderSummary summarize(const sss::Renderer& renderer, const Config& config, double timeS);
+
+/// The last frame's linear radiance of `renderer` as EXR (half, atomically), named by preset and
+/// time. Throws on failure.
+void writeRadiance(const std::filesystem::path& file, const sss::Renderer& renderer, const std::string& presetName,
+                   double timeS);
+
 class ViewSession {
  public:
-  /// Loads the preset (--preset, --size, --set) and builds its renderer; the GL context must be
-  /// current. Throws as loadScene and the Renderer do.
-  ViewSession(const SceneOptions& options, const gpu::ShaderLibrary& shaders);
+  /// Loads the preset (--preset, --size, --set) and, with `rendersHere`, builds its renderer (the
+  /// GL context must be current); without, a render thread renders the session's configuration
+  /// (app/view/render_worker.h) and renderer() must not be called. Throws as loadScene and the
+  /// Renderer do.
+  ViewSession(const SceneOptions& options, const gpu::ShaderLibrary& shaders, bool rendersHere = true);
 
   Config& config() { return loaded_.config; }
   const Config& config() const { return loaded_.config; }
   const Registry& registry() const { return registry_; }
   const sss::MaterialTable& materials() const { return loaded_.materials; }
-  sss::Renderer& renderer() { return *renderer_; }
-  const sss::Renderer& renderer() const { return *renderer_; }
+  sss::Renderer& renderer();
+  const sss::Renderer& renderer() const;
+  /// The renderer as of the last frame rendered (render(), or the render thread's setSummary).
+  const RenderSummary& summary() const { return summary_; }
+  void setSummary(RenderSummary summary) { summary_ = std::move(summary); }
+  /// The render thread refused the configuration: back to the one it rendered instead.
+  void restore(const Config& rendered) { loaded_.config = rendered; }
   Playback& playback() { return *playback_; }
   const Playback& playback() const { return *playback_; }
   const std::string& presetName() const { return loaded_.presetName; }
@@ -50,6 +81,8 @@ class ViewSession {
   /// sss.light_map_size: the sizes in use), or nothing when it chose none yet or `key` is not one of
   /// them: unticking the panel's "auto" keeps this value (issue 38).
   std::optional<std::int64_t> autoChoice(std::string_view key) const;
+  /// The window's pictures are rendered here (render()), not on a render thread.
+  bool rendersHere() const { return rendersHere_; }
   /// Sets a parameter through the registry; returns "" or the registry's one-line refusal, in which
   /// case nothing changed.
   std::string set(std::string_view key, const nlohmann::json& value);
@@ -87,6 +120,8 @@ class ViewSession {
   void start(LoadedScene loaded, std::unique_ptr<sss::Renderer> renderer);
 
   const gpu::ShaderLibrary& shaders_;
+  bool rendersHere_ = true;
+  RenderSummary summary_;
   SceneOptions options_;
   LoadedScene loaded_;
   std::string presetText_;  ///< the preset file as loaded, the base of a saved preset
