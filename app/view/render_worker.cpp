@@ -113,6 +113,7 @@ RenderResult RenderWorker::render(RenderJob& job) {
   RenderResult result;
   result.generation = job.generation;
   result.playing = job.playing;
+  result.preview = job.holdRefinement;
   if (!renderer_ || job.generation != generation_) {
     renderer_.reset();  // the old scene's GPU memory freed before the new one fills it
     generation_ = job.generation;

@@ -52,6 +52,7 @@ struct RenderResult {
   ViewSession::Frame frame;
   RenderSummary summary;
   bool playing = true;  ///< as in the job
+  bool preview = false;  ///< the job's holdRefinement
   Config config;  ///< the configuration rendered (the last that rendered, where the job's was refused)
   std::string debugNote;           ///< why the debug view shows the final image instead
   std::optional<std::size_t> triangles;

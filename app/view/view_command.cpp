@@ -312,7 +312,7 @@ int runView(const ViewOptions& options) {
   };
   // A frame's record in --stats, once it is rendered.
   const auto recordFrame = [&](int index, const ViewSession::Frame& frame, const Config& shown, bool playing,
-                               bool scriptStep) {
+                               bool preview, bool scriptStep) {
     FrameRecord record;
     record.index = index;
     record.timeS = frame.timeS;
@@ -328,7 +328,7 @@ int runView(const ViewOptions& options) {
     record.view["playing"] = playing;
     record.view["real_time_share"] = feedback.realTimeShare;
     record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
-    record.view["preview"] = feedback.preview;  // input moved: refinement held
+    record.view["preview"] = preview;  // input moved: refinement held
     record.view["panel_visible"] = panelVisible;
     record.view["can_undo"] = session.history().canUndo();
     record.view["can_redo"] = session.history().canRedo();
@@ -360,7 +360,7 @@ int runView(const ViewOptions& options) {
     panel.record(feedback.frame);
     if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
     debugWhere.clear();
-    if (stats) recordFrame(renders - 1, feedback.frame, r.config, r.playing, false);
+    if (stats) recordFrame(renders - 1, feedback.frame, r.config, r.playing, r.preview, false);
   };
   // stats.json written whole: `state` empty keeps the writer's own (complete), else with the reason.
   const auto finishStats = [&](const std::string& state, const std::string& reason) {
@@ -609,7 +609,8 @@ int runView(const ViewOptions& options) {
       }
 
       ++windowFrames;
-      if (lockstep && stats) recordFrame(frame, feedback.frame, session.config(), session.playback().playing(), scriptStep);
+      if (lockstep && stats) recordFrame(frame, feedback.frame, session.config(), session.playback().playing(), feedback.preview,
+                                         scriptStep);
       glfwSwapBuffers(window);
       if (!queuedCommands.empty()) --frame;  // the same script frame again, for the rest of its commands
     }
