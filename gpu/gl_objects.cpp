@@ -14,7 +14,7 @@ constexpr int kKinds = static_cast<int>(GlObjectKind::Count);
 std::atomic<std::size_t> gCreated[kKinds];
 std::atomic<std::size_t> gDeleted[kKinds];
 constexpr const char* kKindNames[kKinds] = {"buffer", "texture", "framebuffer", "vertex array", "query",
-                                            "transform feedback"};
+                                            "transform feedback", "sampler"};
 }  // namespace
 
 void detail::countGlObject(GlObjectKind kind, bool created) {
@@ -376,6 +376,12 @@ GLuint64 Query::result() const {
   GLuint64 value = 0;
   glGetQueryObjectui64v(id(), GL_QUERY_RESULT, &value);
   return value;
+}
+
+Sampler::Sampler() {
+  GLuint id = 0;
+  glCreateSamplers(1, &id);
+  name_ = detail::GlName<detail::SamplerTraits>(id);
 }
 
 TransformFeedback::TransformFeedback() {

@@ -25,7 +25,7 @@ class GpuOutOfMemory : public std::runtime_error {
 };
 
 /// The kinds of GL object the owners below hold, for GlObjectTally.
-enum class GlObjectKind { Buffer, Texture, Framebuffer, VertexArray, Query, TransformFeedback, Count };
+enum class GlObjectKind { Buffer, Texture, Framebuffer, VertexArray, Query, TransformFeedback, Sampler, Count };
 
 /// How many GL objects of each kind the owners below have created and deleted in this process:
 /// what a test of "nothing created per frame" (issue 39) compares before and after a frame.
@@ -88,6 +88,10 @@ struct TextureTraits {
 struct FramebufferTraits {
   static constexpr GlObjectKind kKind = GlObjectKind::Framebuffer;
   static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
+};
+struct SamplerTraits {
+  static constexpr GlObjectKind kKind = GlObjectKind::Sampler;
+  static void destroy(GLuint id) { glDeleteSamplers(1, &id); }
 };
 struct VertexArrayTraits {
   static constexpr GlObjectKind kKind = GlObjectKind::VertexArray;
@@ -245,6 +249,21 @@ class Query {
  private:
   detail::GlName<detail::QueryTraits> name_;
   GLenum target_ = 0;
+};
+
+/// A sampler object: how a unit samples its texture, overriding the texture's own parameters (a
+/// depth texture read as values where its own compare mode makes it a shadow sampler).
+class Sampler {
+ public:
+  Sampler();
+  GLuint id() const { return name_.id(); }
+  void set(GLenum parameter, GLint value) { glSamplerParameteri(name_.id(), parameter, value); }
+  void bind(GLuint unit) const { glBindSampler(unit, name_.id()); }
+  /// Back to the texture's own parameters on `unit`.
+  static void unbind(GLuint unit) { glBindSampler(unit, 0); }
+
+ private:
+  detail::GlName<detail::SamplerTraits> name_;
 };
 
 class TransformFeedback {

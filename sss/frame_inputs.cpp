@@ -95,6 +95,8 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("image_space.depth_ratio", [](S s) { return s.imageSpace.depthRatio; }));
     t.push_back(setting("image_space.jacobian", [](S s) { return s.imageSpace.jacobian; }));
     t.push_back(setting("image_space.renormalize", [](S s) { return s.imageSpace.renormalize; }));
+    t.push_back(setting("burley.samples", [](S s) { return s.burley.samples; }));
+    t.push_back(setting("burley.transmission", [](S s) { return s.burley.transmission; }));
 
     const auto scene = [&t](std::string name, Hasher h) { t.emplace_back(std::move(name), std::move(h)); };
     scene("scene.shapes", [](Fingerprint& f, const FrameState& s) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "sss/maps/maps_method.h"
+#include "sss/peers/burley.h"
 #include "sss/peers/image_space_method.h"
 #include "sss/peers/sslpv_method.h"
 
@@ -16,6 +17,7 @@ std::vector<std::unique_ptr<TranslucencyMethod>> makeTranslucencyMethods() {
   m.push_back(std::make_unique<NoCacheMethod>(lightGBuffers));
   m.push_back(std::make_unique<SslpvMethod>());
   m.push_back(std::make_unique<ImageSpaceMethod>());
+  m.push_back(std::make_unique<BurleyMethod>());
   m.push_back(std::make_unique<AlbedoMethod>());
   return m;
 }

@@ -15,6 +15,7 @@ enum class SssMethod {
   NoCache,        ///< the gather per camera pixel against the light G-buffers, no maps (paper Fig. 11)
   ImageSpace,     ///< local subsurface scattering in image space (Mertens et al. 2003; issue 8, docs/image-space.md)
   Sslpv,          ///< subsurface light propagation volumes (Børlum et al. 2011, docs/sslpv.md)
+  Burley,         ///< the engines' screen-space diffusion profile (Christensen and Burley 2015; docs/burley.md)
 };
 
 /// An int setting's "auto" (sss.map_size, sss.light_map_size, sss.maps): the renderer chooses the
@@ -103,6 +104,14 @@ struct ImageSpaceSettings {
   bool renormalize = false;    ///< image_space.renormalize: divide by the sampled share of R_d on valid surface
 };
 
+inline constexpr int kBurleyMaxSamples = 256;
+
+/// The engines' screen-space diffusion profile (burley.*; docs/burley.md).
+struct BurleySettings {
+  int samples = 32;           ///< burley.samples: N per translucent pixel and frame
+  bool transmission = true;   ///< burley.transmission: light through thin parts from the shadow maps
+};
+
 /// Which flux of a cell's point light SSLPV's area light carries out of the surface (sslpv.exitance).
 enum class SslpvExitance {
   Hemisphere,  ///< all of the hemisphere about the normal (the paper's Eq. 5)
@@ -153,6 +162,7 @@ struct RenderSettings {
   VplSettings vpl;
   ImageSpaceSettings imageSpace;
   SslpvSettings sslpv;
+  BurleySettings burley;
 };
 
 }  // namespace tallow::sss

@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -67,6 +68,27 @@ TEST(CubeShadowDepth, OneTexelOfOffsetIsResolvedAtTheFarPlane) {
   const float b = tallow::glsl::cubeShadowDepth(dir * far, range);
   EXPECT_LT(a, b);
   EXPECT_GT(b - a, 5.0f * (std::nextafter(1.0f, 2.0f) - 1.0f));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CubeShadowDepth, TheAxisDistanceInvertsTheStoredDepth) {
+  // method=burley reads the first surface's distance back from the stored depth: the rasteriser's
+  // depth of an offset (rasterDepth, through the face's projection) gives back its largest axis
+  // component, to float precision of the depth (relative 1e-4 at the far end of the range).
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (const float range : {0.5f, 4.0f, 60.0f})
+    for (int i = 0; i < 200; ++i) {
+      glm::vec3 d(u(rng), u(rng), u(rng));
+      if (glm::length(d) < 1e-3f) continue;
+      d *= range * 0.9f / std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) * (0.02f + 0.98f * std::abs(u(rng)));
+      const float m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+      const float z = static_cast<float>(rasterDepth(range, d));
+      EXPECT_NEAR(tallow::glsl::cubeShadowAxisDistance(z, range), m, 1e-4f * range) << "range " << range;
+    }
 }
 
 }  // namespace

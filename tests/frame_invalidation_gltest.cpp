@@ -150,7 +150,7 @@ TEST(FrameInvalidation, EveryRegistryParameterIsAFrameInputOrAPartOfTheScene) {
 /// Every pass of every method in the invalidation scene (which needs all of them).
 std::vector<sss::Pass*> everyPass(sss::FramePlan& plan, app::LoadedScene& loaded) {
   std::vector<sss::Pass*> passes;
-  for (const char* m : {"radiosity-maps", "no-cache", "sslpv", "image-space", "albedo"}) {
+  for (const char* m : {"radiosity-maps", "no-cache", "sslpv", "image-space", "burley", "albedo"}) {
     app::Config config = loaded.config;
     app::parameterRegistry(loaded.materials).set(config, "method", m);
     // The still's average, the glare and the local exposure are planned only when on.
@@ -384,6 +384,7 @@ TEST(FrameInvalidation, RadiosityMapsRerunExactlyWhatTheirInputsName) { checkEve
 TEST(FrameInvalidation, SslpvRerunsExactlyWhatItsInputsName) { checkEveryParameter("sslpv", 23); }
 TEST(FrameInvalidation, ImageSpaceRerunsExactlyWhatItsInputsName) { checkEveryParameter("image-space", 24); }
 TEST(FrameInvalidation, AlbedoRerunsExactlyWhatItsInputsName) { checkEveryParameter("albedo", 13); }
+TEST(FrameInvalidation, BurleyRerunsExactlyWhatItsInputsName) { checkEveryParameter("burley", 13); }
 TEST(FrameInvalidation, RadiosityMapsAtTheirDefaultsRerunWhatTheirInputsName) {
   checkEveryParameter("radiosity-maps", 36, kDefaults);
 }

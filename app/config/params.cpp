@@ -348,16 +348,19 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                   "(local subsurface scattering integrated in the camera image by importance "
                                   "sampling of the standard dipole, Mertens et al. 2003; parameters image_space.*), "
                                   "sslpv (subsurface light propagation volumes, Borlum et al. 2011: sslpv.*, "
-                                  "docs/sslpv.md) or albedo (Lambertian with the object's albedo, no subsurface "
-                                  "transport)."),
+                                  "docs/sslpv.md), burley (what production engines ship: Christensen and Burley's "
+                                  "normalised diffusion profile sampled in screen space, with transmission through "
+                                  "thin parts from the shadow maps; burley.*, docs/burley.md) or albedo (Lambertian "
+                                  "with the object's albedo, no subsurface transport)."),
                           "radiosity-maps");
-    p.choices = {"radiosity-maps", "no-cache", "sslpv", "image-space", "albedo"};
+    p.choices = {"radiosity-maps", "no-cache", "sslpv", "image-space", "burley", "albedo"};
     p.getter = [](const Config& c) {
       switch (c.render.sss.method) {
         case sss::SssMethod::RadiosityMaps: return json("radiosity-maps");
         case sss::SssMethod::NoCache: return json("no-cache");
         case sss::SssMethod::ImageSpace: return json("image-space");
         case sss::SssMethod::Sslpv: return json("sslpv");
+        case sss::SssMethod::Burley: return json("burley");
         case sss::SssMethod::Albedo: break;
       }
       return json("albedo");
@@ -368,6 +371,7 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                             : m == "no-cache"    ? sss::SssMethod::NoCache
                             : m == "image-space" ? sss::SssMethod::ImageSpace
                             : m == "sslpv"       ? sss::SssMethod::Sslpv
+                            : m == "burley"      ? sss::SssMethod::Burley
                                                  : sss::SssMethod::RadiosityMaps;
     };
     r.add(std::move(p));
@@ -665,6 +669,18 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "samples); off: the integral over the visible surface only."),
                                false),
                    [](auto& c) -> auto& { return c.render.imageSpace.renormalize; }));
+  r.add(bind<int>(withDefault(declare("burley.samples", "int", "samples",
+                                      "N: samples of the diffusion profile per translucent pixel and frame, on a disc "
+                                      "facing the camera (the colour bands in turn), as engines sample it.",
+                                      1, sss::kBurleyMaxSamples),
+                              32),
+                  [](auto& c) -> auto& { return c.render.burley.samples; }));
+  r.add(bind<bool>(withDefault(declare("burley.transmission", "bool", "",
+                                       "Light through thin parts: the thickness between a point and the first surface "
+                                       "its light's shadow map sees, through the profile's transmittance (engines' "
+                                       "\"thick object\" mode)."),
+                               true),
+                   [](auto& c) -> auto& { return c.render.burley.transmission; }));
 
   // --- Scene-bound: no default; the preset gives the value --------------------------------------
   {

@@ -20,3 +20,11 @@ TALLOW_FN float cubeShadowDepth(vec3 d, float range) {
   float n = kCubeShadowNearFraction * range;
   return range * (m - n) / ((range - n) * m);
 }
+
+// The inverse: the largest axis component m of the offset whose window depth is z (a depth the
+// shadow map stores), m = f n / (f − z (f − n)): how far along the face's axis the first surface
+// the light sees lies (method=burley's thickness through the object, sss/peers/burley.h).
+TALLOW_FN float cubeShadowAxisDistance(float z, float range) {
+  float n = kCubeShadowNearFraction * range;
+  return range * n / (range - z * (range - n));
+}

@@ -13,7 +13,6 @@ namespace tallow::sss {
 namespace {
 
 constexpr GLuint kPatternBinding = 7;  // shaders/peers/image_space/pattern.comp, scatter.frag
-constexpr GLuint kDirectionalShadowUnit = 0, kPointShadowUnit = 1;  // the G-buffer pass
 constexpr int kPatternGroupSize = 64;                               // pattern.comp's local size
 
 int translucentCount(const Scene& scene) {
@@ -61,7 +60,7 @@ struct PassState {
 static_assert(sizeof(ImageSpacePatternRecord) == 32, "std430 layout of IsPatternGpu: two vec4");
 
 ImageSpaceSss::ImageSpaceSss(const gpu::ShaderLibrary& shaders)
-    : gbufferProgram_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "peers/image_space/gbuffer.frag"}}}),
+    : gbuffer_(shaders),
       patternProgram_(shaders, {{{GL_COMPUTE_SHADER, "peers/image_space/pattern.comp"}}}),
       scatterProgram_(shaders, {{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "peers/image_space/scatter.frag"}}}),
       combineProgram_(shaders, {{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "peers/image_space/combine.frag"}}}) {}
@@ -104,22 +103,11 @@ std::string ImageSpaceSss::describe(const Scene& scene, const RenderSettings& se
 }
 
 void ImageSpaceSss::ensureTargets(int width, int height) {
-  if (position_.id() && position_.width() == width && position_.height() == height) return;
-  position_ = screenTexture(GL_RGBA32F, width, height);
-  normal_ = screenTexture(GL_RGBA16F, width, height);
-  irradiance_ = screenTexture(GL_RGBA32F, width, height);
-  depth_ = gpu::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+  if (sum_.id() && sum_.width() == width && sum_.height() == height) return;
   sum_ = screenTexture(GL_RGBA32F, width, height);
   coverage_ = screenTexture(GL_RGBA32F, width, height);
   accumSum_ = screenTexture(GL_RGBA32F, width, height);
   accumCoverage_ = screenTexture(GL_RGBA32F, width, height);
-  gbufferTarget_ = gpu::Framebuffer();
-  gbufferTarget_.attachColor(0, position_);
-  gbufferTarget_.attachColor(1, normal_);
-  gbufferTarget_.attachColor(2, irradiance_);
-  gbufferTarget_.attachDepth(depth_);
-  gbufferTarget_.setDrawBuffers(3);
-  gbufferTarget_.checkComplete("image-space G-buffer");
   scatterTarget_ = gpu::Framebuffer();
   scatterTarget_.attachColor(0, sum_);
   scatterTarget_.attachColor(1, coverage_);
@@ -141,48 +129,21 @@ void ImageSpaceSss::restart() {
 
 void ImageSpaceSss::renderGBuffer(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                                   const CameraView& camera, const ShadowPass& shadows) {
-  slots_.assign(scene.objects.size(), -1);
-  int slot = 0;
-  for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].translucent) slots_[i] = slot++;
+  gbuffer_.render(scene, settings, geometry, camera, shadows);
   ensureTargets(settings.width, settings.height);
-  const float zero[4] = {0, 0, 0, 0};
-  const float one = 1.0f;
-  for (GLint i = 0; i < 3; ++i) glClearNamedFramebufferfv(gbufferTarget_.id(), GL_COLOR, i, zero);
-  glClearNamedFramebufferfv(gbufferTarget_.id(), GL_DEPTH, 0, &one);
-
-  gpu::Program& p = gbufferProgram_;
-  setLightUniforms(p, scene, settings, shadows, kDirectionalShadowUnit, kPointShadowUnit);
-  setCameraUniforms(p, camera);
-  PassState state;
-  gbufferTarget_.bind();
-  glViewport(0, 0, settings.width, settings.height);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
-  p.use();
-  for (const DrawItem& item : geometry.items()) {
-    const SceneObject& object = scene.objects[static_cast<std::size_t>(item.objectIndex)];
-    p.set("uModel", item.model);
-    p.set("uNormalMatrix", item.normalMatrix);
-    p.set("uSlot", slots_[static_cast<std::size_t>(item.objectIndex)]);
-    p.set("uObjectEta", object.material.eta);
-    item.draw();
-  }
 }
 
 void ImageSpaceSss::scatter(const Scene& scene, const RenderSettings& settings, const CameraView& camera) {
   const ImageSpaceSettings& s = settings.imageSpace;
-  const int slots = std::max(1, static_cast<int>(std::count_if(slots_.begin(), slots_.end(), [](int v) { return v >= 0; })));
+  const std::vector<int>& slotOf = gbuffer_.slots();
+  const int slots = std::max(1, static_cast<int>(std::count_if(slotOf.begin(), slotOf.end(), [](int v) { return v >= 0; })));
   const int sets = s.tile * s.tile;
   const std::size_t bytes = patternBytes(slots, s);
   if (pattern_.size() != bytes) pattern_ = gpu::Buffer(bytes);
 
   // The frame's pattern (the shared lines of shaders/peers/image_space/sampling.glsl on the GPU).
   gpu::Program& pattern = patternProgram_;
-  setSlotMaterialUniforms(pattern, scene, slots_);
+  setSlotMaterialUniforms(pattern, scene, slotOf);
   pattern.set("uSlots", slots);
   pattern.set("uSets", sets);
   pattern.set("uSamples", s.samples);
@@ -197,13 +158,13 @@ void ImageSpaceSss::scatter(const Scene& scene, const RenderSettings& settings, 
 
   // The estimate per pixel.
   gpu::Program& p = scatterProgram_;
-  setSlotMaterialUniforms(p, scene, slots_);
+  setSlotMaterialUniforms(p, scene, slotOf);
   p.set("uPosition", 0);
   p.set("uNormal", 1);
   p.set("uIrradiance", 2);
-  position_.bind(0);
-  normal_.bind(1);
-  irradiance_.bind(2);
+  gbuffer_.positions().bind(0);
+  gbuffer_.normals().bind(1);
+  gbuffer_.irradiance().bind(2);
   setCameraUniforms(p, camera);
   // A pixel's world size: per metre of distance (perspective) or in metres (orthographic).
   const float height = static_cast<float>(settings.height);
@@ -232,8 +193,8 @@ void ImageSpaceSss::combine(const RenderSettings& settings) {
   p.set("uTile", settings.imageSpace.tile);
   sum_.bind(0);
   coverage_.bind(1);
-  position_.bind(2);
-  normal_.bind(3);
+  gbuffer_.positions().bind(2);
+  gbuffer_.normals().bind(3);
   PassState state;
   accumTarget_.bind();
   glViewport(0, 0, settings.width, settings.height);
@@ -257,7 +218,7 @@ void ImageSpaceSss::setSurfaceUniforms(gpu::Program& p, const ImageSpaceSss* sel
 }
 
 std::size_t ImageSpaceSss::bytes() const {
-  return position_.bytes() + normal_.bytes() + irradiance_.bytes() + depth_.bytes() + sum_.bytes() + coverage_.bytes() +
+  return gbuffer_.bytes() + sum_.bytes() + coverage_.bytes() +
          accumSum_.bytes() + accumCoverage_.bytes() + pattern_.size();
 }
 

@@ -22,6 +22,7 @@
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
 #include "gpu/shader_library.h"
+#include "sss/peers/camera_gbuffer.h"
 #include "sss/render_settings.h"
 #include "sss/scene.h"
 #include "sss/scene_geometry.h"
@@ -68,26 +69,25 @@ class ImageSpaceSss {
   int frames() const { return frames_; }  ///< F, frames accumulated
   std::size_t bytes() const;
   /// For tests: the G-buffer, the last scatter estimate, the accumulation and the pattern.
-  const gpu::Texture& positions() const { return position_; }
-  const gpu::Texture& irradiance() const { return irradiance_; }
+  const gpu::Texture& positions() const { return gbuffer_.positions(); }
+  const gpu::Texture& irradiance() const { return gbuffer_.irradiance(); }
   const gpu::Texture& scatterSum() const { return sum_; }
   const gpu::Texture& accumulatedSum() const { return accumSum_; }
   const gpu::Texture& accumulatedCoverage() const { return accumCoverage_; }
   const gpu::Buffer& pattern() const { return pattern_; }
   /// Translucent slot of each scene object (−1 for opaque), valid after renderGBuffer.
-  const std::vector<int>& slots() const { return slots_; }
+  const std::vector<int>& slots() const { return gbuffer_.slots(); }
 
  private:
   void ensureTargets(int width, int height);
 
-  gpu::Program gbufferProgram_, patternProgram_, scatterProgram_, combineProgram_;
-  gpu::Texture position_, normal_, irradiance_, depth_;  ///< pass 1
+  CameraIrradianceGBuffer gbuffer_;  ///< pass 1
+  gpu::Program patternProgram_, scatterProgram_, combineProgram_;
   gpu::Texture sum_, coverage_;                           ///< pass 2
   gpu::Texture accumSum_, accumCoverage_;                 ///< pass 3, read by the surface pass
-  gpu::Framebuffer gbufferTarget_, scatterTarget_, accumTarget_;
+  gpu::Framebuffer scatterTarget_, accumTarget_;
   gpu::Buffer pattern_;
   gpu::VertexArray emptyVao_;
-  std::vector<int> slots_;
   int frames_ = 0;
 };
 
