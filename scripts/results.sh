@@ -17,7 +17,9 @@
 # candle measured on its meshes (issue 35, point 6, scripts/results_melt.py), and the clean picture
 # (issue 36: anti-aliasing, glare, dither; scripts/results_picture.py), and dual contouring in
 # compute against geometry shaders (issue 39, point 1; scripts/results_extraction.py) and the default
-# candle counted per pass and projected onto GPUs (issue 39, points 6-7; scripts/results_passes.py). Every
+# candle counted per pass and projected onto GPUs (issue 39, points 6-7; scripts/results_passes.py), and
+# the default candle by the engines' diffusion profile beside the radiosity maps (issue 41, point 3;
+# scripts/results_candle_peers.py). Every
 # number in the file comes from those runs; nothing is typed by hand.
 # Usage: bash scripts/results.sh [--quick]   (--quick: 1 repeat, for a smoke run)
 # The build folder is scripts/build.sh's: build/ unless TALLOW_BUILD_DIR is set.
@@ -74,6 +76,8 @@ TALLOW="$tallow" python3 "$root/scripts/results_melt.py" run "$work/melt" ${quic
 # Issue 39, points 6 and 7: the default candle counted per pass, dual contouring before and after it
 # moved to compute, projected onto GPUs by the cost model (scripts/results_passes.py).
 TALLOW="$tallow" python3 "$root/scripts/results_passes.py" run "$work/passes" ${quick:+--quick}
+# Issue 41, point 3: the default candle by method=burley and by the radiosity maps against the reference.
+TALLOW="$tallow" python3 "$root/scripts/results_candle_peers.py" run "$work/candle_peers" ${quick:+--quick}
 # Issue 36: the clean picture: anti-aliased stills, the glare, the dither (captures and the GL tests
 # that measure against independent answers).
 TALLOW="$tallow" TALLOW_GLTESTS="$build/tests/tallow_gltests" TALLOW_TESTS="$build/tests/tallow_tests" \
@@ -252,6 +256,7 @@ python3 "$root/scripts/results_soak.py" report "$work/soak" "$root/docs/RESULTS.
 python3 "$root/scripts/results_melt.py" report "$work/melt" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_passes.py" report "$work/passes" "$root/docs/RESULTS.md.tmp"
 python3 "$root/scripts/results_picture.py" report "$work/picture" "$root/docs/RESULTS.md.tmp"
+python3 "$root/scripts/results_candle_peers.py" report "$work/candle_peers" "$root/docs/RESULTS.md.tmp"
 # Issue 18: a GPU run of the device bench, copied into docs/gpu/, or the statement that none exists.
 python3 "$root/scripts/results_bench.py" gpu "$root/docs/gpu" "$root/docs/RESULTS.md.tmp"
 mv "$root/docs/RESULTS.md.tmp" "$root/docs/RESULTS.md"
