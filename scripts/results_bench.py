@@ -89,14 +89,7 @@ def run(work, quick):
     bench(f"{work}/candle", "candle", small,
           ["--time", "5", "--methods", "radiosity-maps", "--set", f"sss.frames={frames}",
            "--sweep", "sss.projected_area=false,true"], ["--ref-spp", "2" if quick else "16"])
-    # Fig. 9 and target 3: equal time at three scales, the camera moved with the bunny so that it
-    # frames it the same; the no-cache gather beside the maps.
-    for scale in SCALES:
-        f = scale / 0.1
-        bench(f"{work}/scale_{scale}", "bunny", small,
-              ["--methods", ",".join(PEER_METHODS), "--set", f"sss.frames={frames}", "--set", f"scale={scale}",
-               "--set", "camera.position=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[0]),
-               "--set", "camera.target=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[1]), "--equal-time"], ref_loose)
+    run_scales(work, quick)
     # Fig. 11 and target 4: cost against screen occupancy at 1024x1024 (the chocolate-milk blob,
     # animated, the maps restarted every frame as in the paper: sss.history=0), K = 10 maps.
     size = "256x256" if quick else "1024x1024"
@@ -117,14 +110,38 @@ def run(work, quick):
 # Issue 8: every method on the shared scenes. The bunny's three scales are the equal-time runs above;
 # the blob (frozen at one time, so the progressive methods converge) and the candle holder (a point light
 # inside a hollow cylinder) are run here.
-PEER_METHODS = ["radiosity-maps", "no-cache", "sslpv", "image-space"]
-PEER_SCENES = [("blob", ["--time", "2.5"]), ("candle-holder", [])]
+PEER_METHODS = ["radiosity-maps", "no-cache", "sslpv", "image-space", "burley"]
+# Issue 41: the bunny lit from the camera's side (what a screen-space profile handles best), at the
+# size of the issue's bound (96x72, relative RMSE at most 0.30 for burley), and the default candle.
+FRONT_LIGHT = "0.15,0.37,0.92"
+# (label, preset, size, quick size, options)
+PEER_SCENES = [("blob", "blob", "160x120", "64x48", ["--time", "2.5"]),
+               ("candle-holder", "candle-holder", "160x120", "64x48", []),
+               ("bunny front-lit", "bunny", "96x72", "64x48", ["--set", f"light.direction={FRONT_LIGHT}"]),
+               ("candle", "candle", "160x90", "64x36", ["--time", "16"])]
+
+
+def peer_folder(work, label):
+    return f"{work}/peers_{label.replace(' ', '_')}"
+
+
+def run_scales(work, quick):
+    """Fig. 9 and target 3: equal time at three scales, the camera moved with the bunny so that it
+    frames it the same; every peer method beside the maps."""
+    frames = "4" if quick else "16"
+    for scale in SCALES:
+        f = scale / 0.1
+        bench(f"{work}/scale_{scale}", "bunny", "64x48" if quick else "160x120",
+              ["--methods", ",".join(PEER_METHODS), "--set", f"sss.frames={frames}", "--set", f"scale={scale}",
+               "--set", "camera.position=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[0]),
+               "--set", "camera.target=%g,%g,%g" % tuple(f * c for c in BUNNY_CAMERA[1]), "--equal-time"],
+              ["--ref-spp", "2"] if quick else ["--ref-rel-error", "0.04"])
 
 
 def run_peers(work, quick):
-    """Issue 8: the four methods side by side on the blob and the candle holder."""
-    for preset, extra in PEER_SCENES:
-        bench(f"{work}/peers_{preset}", preset, "64x48" if quick else "160x120",
+    """Issues 8 and 41: every method side by side on the shared scenes."""
+    for label, preset, size, quick_size, extra in PEER_SCENES:
+        bench(peer_folder(work, label), preset, quick_size if quick else size,
               ["--methods", ",".join(PEER_METHODS), "--set", "sss.frames=" + ("4" if quick else "16"), *extra],
               ["--ref-spp", "2"] if quick else ["--ref-rel-error", "0.04"])
 
@@ -410,51 +427,7 @@ def report(work, md, images):
     settings_table(add, cand, ["sss.projected_area"])
 
     # --- Fig. 9 ----------------------------------------------------------------------------------
-    scale_runs = [(scale, load(f"{work}/scale_{scale}/bench.json")) for scale in SCALES]
-    sc = scale_runs[1][1]
-    add("### Equal time against the reference at three scales (the paper's Fig. 9; target 3)")
-    add("")
-    add("Bunny in marble at %dx%d, the camera moved with it so that it frames it the same. For each row,"
-        % (sc["width"], sc["height"]))
-    add("`tallow bench --equal-time` runs the reference with another seed")
-    add("for as long as our first frame took (at least one pass, so it often runs longer) and measures it against")
-    add("the converged reference like our frame. The no-cache gather (the paper's Fig. 11 variant) renders one")
-    add("independent estimate per frame.")
-    add("")
-    add("| scale [m] | method | first frame [ms] | first frame rel. RMSE | reference at equal time: [ms], passes, rel. RMSE | converged rel. RMSE | reference ε |")
-    add("|---|---|---:|---:|---:|---:|---:|")
-    equal = {}
-    for scale, b in scale_runs:
-        for row in b["rows"]:
-            eps = reference_error(b, row)
-            add("| %g | %s | %s | %s | %s, %d, %s | %s | %s |" % (
-                scale, row["method"], fmt(row["first_wall_ms"], 1), pct(row["first_rel_rmse"]),
-                fmt(row.get("equal_time_ms"), 1), row.get("equal_time_passes", 0), pct(row.get("equal_time_rel_rmse")),
-                pct(row["last_rel_rmse"]), pct(eps)))
-            if row["method"] == "radiosity-maps":
-                equal["%g" % scale] = row
-    add("")
-    copy_figure(f"{work}/scale_0.1/speed_error.png", images, "scales_speed_error.png")
-    copy_figure(f"{work}/scale_0.1/convergence.png", images, "scales_convergence.png")
-    for scale, b in scale_runs:
-        for row in b["rows"]:
-            copy_figure(row_figure(work, f"scale_{scale}", row), images, f"scales_{row['row']}_{scale:g}.png")
-    add("Speed against error (one colour and marker per method; dashed: the reference's own ε) and convergence")
-    add("with frames (0.1 m):")
-    add("")
-    add("![speed against error](%s/scales_speed_error.png) ![convergence](%s/scales_convergence.png)" % (rel_images, rel_images))
-    add("")
-    add("Radiosity maps at each scale: the reference, our first and last frames and the reference run for as long")
-    add("as our first frame (top), their differences to the converged reference (bottom), " + DIFFERENCE_NOTE)
-    add("")
-    for scale, b in scale_runs:
-        for row in b["rows"]:
-            if row["method"] == "radiosity-maps":
-                add("![scale %g](%s/scales_%s_%g.png)" % (scale, rel_images, row["row"], scale))
-                add("")
-                add("*Bunny at %g m: first frame %s in %s ms; the reference at equal time %s.*" % (
-                    scale, pct(row["first_rel_rmse"]), fmt(row["first_wall_ms"], 0), pct(row.get("equal_time_rel_rmse"))))
-                add("")
+    report_scales(work, add, images, rel_images)
 
     # --- Fig. 11 ---------------------------------------------------------------------------------
     add("### Cached against no-cache by screen occupancy (the paper's Fig. 11; target 4)")
@@ -558,6 +531,55 @@ def report(work, md, images):
     add("Rerun: `bash scripts/results.sh`; the experiments and their commands are in `scripts/results_bench.py`.")
     with open(md, "a") as f:
         f.write("\n".join(L) + "\n")
+
+
+def report_scales(work, add, images, rel_images):
+    """Fig. 9 and target 3: the equal-time runs at three scales (a ### part of the issue-6 section)."""
+    scale_runs = [(scale, load(f"{work}/scale_{scale}/bench.json")) for scale in SCALES]
+    sc = scale_runs[1][1]
+    add("### Equal time against the reference at three scales (the paper's Fig. 9; target 3)")
+    add("")
+    add("Bunny in marble at %dx%d, the camera moved with it so that it frames it the same. For each row,"
+        % (sc["width"], sc["height"]))
+    add("`tallow bench --equal-time` runs the reference with another seed")
+    add("for as long as our first frame took (at least one pass, so it often runs longer) and measures it against")
+    add("the converged reference like our frame. The no-cache gather (the paper's Fig. 11 variant) renders one")
+    add("independent estimate per frame.")
+    add("")
+    add("| scale [m] | method | first frame [ms] | first frame rel. RMSE | reference at equal time: [ms], passes, rel. RMSE | converged rel. RMSE | reference ε |")
+    add("|---|---|---:|---:|---:|---:|---:|")
+    equal = {}
+    for scale, b in scale_runs:
+        for row in b["rows"]:
+            eps = reference_error(b, row)
+            add("| %g | %s | %s | %s | %s, %d, %s | %s | %s |" % (
+                scale, row["method"], fmt(row["first_wall_ms"], 1), pct(row["first_rel_rmse"]),
+                fmt(row.get("equal_time_ms"), 1), row.get("equal_time_passes", 0), pct(row.get("equal_time_rel_rmse")),
+                pct(row["last_rel_rmse"]), pct(eps)))
+            if row["method"] == "radiosity-maps":
+                equal["%g" % scale] = row
+    add("")
+    copy_figure(f"{work}/scale_0.1/speed_error.png", images, "scales_speed_error.png")
+    copy_figure(f"{work}/scale_0.1/convergence.png", images, "scales_convergence.png")
+    for scale, b in scale_runs:
+        for row in b["rows"]:
+            copy_figure(row_figure(work, f"scale_{scale}", row), images, f"scales_{row['row']}_{scale:g}.png")
+    add("Speed against error (one colour and marker per method; dashed: the reference's own ε) and convergence")
+    add("with frames (0.1 m):")
+    add("")
+    add("![speed against error](%s/scales_speed_error.png) ![convergence](%s/scales_convergence.png)" % (rel_images, rel_images))
+    add("")
+    add("Radiosity maps at each scale: the reference, our first and last frames and the reference run for as long")
+    add("as our first frame (top), their differences to the converged reference (bottom), " + DIFFERENCE_NOTE)
+    add("")
+    for scale, b in scale_runs:
+        for row in b["rows"]:
+            if row["method"] == "radiosity-maps":
+                add("![scale %g](%s/scales_%s_%g.png)" % (scale, rel_images, row["row"], scale))
+                add("")
+                add("*Bunny at %g m: first frame %s in %s ms; the reference at equal time %s.*" % (
+                    scale, pct(row["first_rel_rmse"]), fmt(row["first_wall_ms"], 0), pct(row.get("equal_time_rel_rmse"))))
+                add("")
 
 
 def report_vpl(work, add, images, rel_images):
@@ -679,7 +701,7 @@ def report_vpl(work, add, images, rel_images):
 def peer_runs(work):
     """(scene label, bench.json) of every scene that ran all methods."""
     runs = [("bunny %g m" % scale, load(f"{work}/scale_{scale}/bench.json")) for scale in SCALES]
-    runs += [(preset, load(f"{work}/peers_{preset}/bench.json")) for preset, _ in PEER_SCENES]
+    runs += [(label, load(f"{peer_folder(work, label)}/bench.json")) for label, *_ in PEER_SCENES]
     return runs
 
 
@@ -695,7 +717,7 @@ def peers_plot(runs, images, name):
                 conv = row.get("median_converged_wall_ms") or row.get("median_wall_ms")
                 f.write("%s,%s,%.6g,%.6g,%.6g,%.6g\n" % (label, row["method"], row["first_wall_ms"],
                                                          row["first_rel_rmse"], conv, row["last_rel_rmse"]))
-    styles = {"radiosity-maps": 7, "no-cache": 5, "sslpv": 9, "image-space": 13}
+    styles = {"radiosity-maps": 7, "no-cache": 5, "sslpv": 9, "image-space": 13, "burley": 11}
     plots = []
     for i, method in enumerate(PEER_METHODS):
         sel = "(strcol(2) eq '%s' ? $%%d : NaN)" % method
@@ -717,16 +739,54 @@ def peers_plot(runs, images, name):
     return True
 
 
+def report_burley(runs, add):
+    """Issue 41: where the engines' method wins and where it fails, from the peers' table."""
+    pairs = []
+    for label, b in runs:
+        by = {r["method"]: r for r in b["rows"]}
+        if "burley" in by and "radiosity-maps" in by:
+            pairs.append((label, by["burley"], by["radiosity-maps"], by))
+    if not pairs:
+        return
+    add("The engines' method (`burley`) against the radiosity maps, scene by scene (first frame: time ratio maps /")
+    add("burley, error ratio burley / maps; converged: error ratio):")
+    add("")
+    for label, bu, m, by in pairs:
+        rank = 1 + sum(1 for r in by.values() if r["method"] in PEER_METHODS and r["first_wall_ms"] < bu["first_wall_ms"])
+        add("- **%s**: first frame %.1fx as fast (rank %d of %d by time), %s against %s (%.1fx the error); converged %s"
+            " against %s; mean L / reference %s." % (
+                label, m["first_wall_ms"] / bu["first_wall_ms"], rank,
+                sum(1 for r in by.values() if r["method"] in PEER_METHODS), pct(bu["first_rel_rmse"]),
+                pct(m["first_rel_rmse"]), bu["first_rel_rmse"] / max(m["first_rel_rmse"], 1e-9),
+                pct(bu["last_rel_rmse"]), pct(m["last_rel_rmse"]), fmt(bu["last_error"].get("mean_ratio"))))
+    side = next((bu for label, bu, _, _ in pairs if label == "bunny 0.1 m"), None)
+    front = next((bu for label, bu, _, _ in pairs if label == "bunny front-lit"), None)
+    if side and front:
+        add("")
+        worse = side["last_rel_rmse"] > 1.1 * front["last_rel_rmse"]
+        add("The 0.1 m bunny lit from the camera's side and from its left (the preset): `burley` %s and %s (the"
+            " issue's bound for the front-lit bunny: 30%%); %s" % (
+                pct(front["last_rel_rmse"]), pct(side["last_rel_rmse"]),
+                "worse from the side: a radial profile has no direction, so light entering at a grazing angle"
+                " scatters as if it had come straight in." if worse else
+                "about the same: on the bunny its error does not come from the light's direction but from"
+                " what both lightings share (the mean L / reference above)."))
+    add("")
+
+
 def report_peers(work, add, images, rel_images):
-    """Issue 8: all four methods on the same scenes, one table and one plot, and where each wins."""
+    """Issues 8 and 41: every method on the same scenes, one table and one plot, and where each wins."""
     runs = peer_runs(work)
     add("## The peers side by side (issue 8)")
     add("")
     add("Every method on the same scenes, lights and materials, each against the same `tallow reference`: the")
     add("scattered radiosity maps (`radiosity-maps`), their gather per camera pixel without a cache (`no-cache`,")
-    add("the paper's Fig. 11 variant), subsurface light propagation volumes (`sslpv`, docs/sslpv.md) and")
-    add("image-space importance sampling of the dipole (`image-space`, docs/image-space.md). The bunny runs are")
-    add("the equal-time runs above; the blob is frozen at t = 2.5 s. `first` is the first frame after a")
+    add("the paper's Fig. 11 variant), subsurface light propagation volumes (`sslpv`, docs/sslpv.md),")
+    add("image-space importance sampling of the dipole (`image-space`, docs/image-space.md) and what engines")
+    add("ship, Christensen and Burley's diffusion profile in screen space with shadow-map transmission (`burley`,")
+    add("docs/burley.md). The bunny runs at three scales are the equal-time runs above (lit from the side, as the")
+    add("preset); `bunny front-lit` is the 0.1 m bunny at 96x72 lit from the camera's side (light direction")
+    add("%s); the blob is frozen at t = 2.5 s; the candle is the default one at its start (t = 16 s). `first` is the first frame after a" % FRONT_LIGHT)
     add("restart (what an animated scene pays every frame), `converged` the last frame of the run (a still")
     add("scene, after the progressive methods have accumulated). Device: `%s`; times are llvmpipe's, so compare"
         % runs[0][1]["gpu"]["GL_RENDERER"])
@@ -760,6 +820,7 @@ def report_peers(work, add, images, rel_images):
     for w in wins:
         add(w)
     add("")
+    report_burley(runs, add)
     add("The 0.1 m bunny, each method: the reference, the method's first and last frames and the reference run for")
     add("as long as its first frame (top), their differences to the reference (bottom), " + DIFFERENCE_NOTE)
     add("")
@@ -828,6 +889,17 @@ def splice_vpl(work, md, images):
     results_sections.splice(md, lines[0], lines)
 
 
+def splice_peers(work, md, images):
+    """Only the equal-time runs at three scales (Fig. 9, a ### part of the issue-6 section) and the
+    peers' section, regenerated from run-peers' runs and put in place in MD."""
+    os.makedirs(images, exist_ok=True)
+    rel_images = os.path.relpath(images, os.path.dirname(md))
+    for report_part in (report_scales, report_peers):
+        lines = []
+        report_part(work, lines.append, images, rel_images)
+        results_sections.splice(md, lines[0], lines)
+
+
 def main(argv):
     if len(argv) >= 2 and argv[0] == "run":
         run(argv[1], "--quick" in argv[2:])
@@ -836,13 +908,19 @@ def main(argv):
         run_vpl(argv[1], "--quick" in argv[2:])
     elif len(argv) == 4 and argv[0] == "splice-vpl":
         splice_vpl(argv[1], argv[2], argv[3])
+    elif len(argv) >= 2 and argv[0] == "run-peers":
+        os.makedirs(argv[1], exist_ok=True)
+        run_scales(argv[1], "--quick" in argv[2:])
+        run_peers(argv[1], "--quick" in argv[2:])
+    elif len(argv) == 4 and argv[0] == "splice-peers":
+        splice_peers(argv[1], argv[2], argv[3])
     elif len(argv) == 4 and argv[0] == "report":
         report(argv[1], argv[2], argv[3])
     elif len(argv) == 3 and argv[0] == "gpu":
         report_gpu(argv[1], argv[2])
     else:
         sys.exit("usage: results_bench.py run DIR [--quick] | run-vpl DIR [--quick] | report DIR MD IMAGES |"
-                 " splice-vpl DIR MD IMAGES | gpu FOLDER MD")
+                 " splice-vpl DIR MD IMAGES | run-peers DIR [--quick] | splice-peers DIR MD IMAGES | gpu FOLDER MD")
 
 
 if __name__ == "__main__":

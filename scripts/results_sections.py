@@ -70,7 +70,10 @@ def splice(md, heading, lines):
         text = f.read().split("\n")
     if heading in text:
         start = text.index(heading)
-        end = next((i for i in range(start + 1, len(text)) if text[i].startswith("## ")), len(text))
+        # Up to the next heading of the same level or above ("## " ends a "### " part too).
+        level = len(heading) - len(heading.lstrip("#"))
+        ends = tuple("#" * k + " " for k in range(1, level + 1))
+        end = next((i for i in range(start + 1, len(text)) if text[i].startswith(ends)), len(text))
     else:
         start = next((i for i, line in enumerate(text) if line.startswith("## On a GPU")), len(text))
         end = start

@@ -97,6 +97,7 @@ const std::vector<std::pair<std::string, Hasher>>& table() {
     t.push_back(setting("image_space.renormalize", [](S s) { return s.imageSpace.renormalize; }));
     t.push_back(setting("burley.samples", [](S s) { return s.burley.samples; }));
     t.push_back(setting("burley.transmission", [](S s) { return s.burley.transmission; }));
+    t.push_back(setting("burley.kernel", [](S s) { return s.burley.kernel; }));
 
     const auto scene = [&t](std::string name, Hasher h) { t.emplace_back(std::move(name), std::move(h)); };
     scene("scene.shapes", [](Fingerprint& f, const FrameState& s) {

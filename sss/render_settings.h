@@ -106,10 +106,17 @@ struct ImageSpaceSettings {
 
 inline constexpr int kBurleyMaxSamples = 256;
 
+/// How burley.scatter applies the profile (burley.kernel).
+enum class BurleyKernel {
+  Disc,       ///< importance-sampled discs facing the camera (Unreal's Burley SSS)
+  Separable,  ///< a horizontal then a vertical 1D pass (Jimenez et al. 2015's structure)
+};
+
 /// The engines' screen-space diffusion profile (burley.*; docs/burley.md).
 struct BurleySettings {
-  int samples = 32;           ///< burley.samples: N per translucent pixel and frame
+  int samples = 32;           ///< burley.samples: N per translucent pixel and frame (separable: taps per pass)
   bool transmission = true;   ///< burley.transmission: light through thin parts from the shadow maps
+  BurleyKernel kernel = BurleyKernel::Disc;  ///< burley.kernel
 };
 
 /// Which flux of a cell's point light SSLPV's area light carries out of the surface (sslpv.exitance).

@@ -14,6 +14,7 @@
 #include "sss/maps/radiosity_maps.h"
 #include "sss/maps/virtual_point_lights.h"
 #include "sss/memory_budget.h"
+#include "sss/peers/burley.h"
 #include "sss/peers/image_space.h"
 #include "support/error_of.h"
 #include "support/render_support.h"
@@ -67,6 +68,9 @@ TEST_P(MemoryBudget, FiguresEqualTheBytesOfTheAllocatedObjects) {
     for (const sss::SceneObject& o : scene.objects) translucent += o.translucent ? 1 : 0;
     EXPECT_EQ(is->bytes(), sss::imageSpaceBytes(settings.width, settings.height, translucent, settings.imageSpace));
   }
+  if (const sss::BurleySss* b = renderer.module<sss::BurleySss>()) {
+    EXPECT_EQ(b->bytes(), sss::BurleySss::bytesFor(settings.width, settings.height, settings.burley.kernel));
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -84,6 +88,8 @@ INSTANTIATE_TEST_SUITE_P(
         BudgetCase{"bunny", {"sss.map_size=auto", "sss.light_map_size=auto"}},
         BudgetCase{"bunny", {"method=no-cache"}},
         BudgetCase{"bunny", {"method=image-space", "image_space.samples=4"}},
+        BudgetCase{"bunny", {"method=burley"}},
+        BudgetCase{"bunny", {"method=burley", "burley.kernel=separable"}},
         BudgetCase{"slab", {"method=sslpv", "sslpv.grid=8", "sslpv.inject_size=16"}}),
     [](const ::testing::TestParamInfo<BudgetCase>& info) { return std::to_string(info.index) + "_" + info.param.preset; });
 

@@ -681,6 +681,22 @@ Registry parameterRegistry(const sss::MaterialTable& materials) {
                                        "\"thick object\" mode)."),
                                true),
                    [](auto& c) -> auto& { return c.render.burley.transmission; }));
+  {
+    Param p = withDefault(declare("burley.kernel", "enum", "",
+                                  "How the profile is applied in screen space: disc (importance-sampled discs facing "
+                                  "the camera, Unreal's Burley SSS; burley.samples per pixel) or separable (a "
+                                  "horizontal then a vertical pass of burley.samples taps, Jimenez et al. 2015's "
+                                  "structure); docs/burley.md has both against the reference."),
+                          "disc");
+    p.choices = {"disc", "separable"};
+    p.getter = [](const Config& c) {
+      return json(c.render.burley.kernel == sss::BurleyKernel::Separable ? "separable" : "disc");
+    };
+    p.setter = [](Config& c, const json& v) {
+      c.render.burley.kernel = v.get<std::string>() == "separable" ? sss::BurleyKernel::Separable : sss::BurleyKernel::Disc;
+    };
+    r.add(std::move(p));
+  }
 
   // --- Scene-bound: no default; the preset gives the value --------------------------------------
   {

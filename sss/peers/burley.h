@@ -15,6 +15,7 @@
 //      L = F_t(ω_o)/π · B, as the image-space peer.
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "gpu/gl_objects.h"
 #include "gpu/program.h"
@@ -41,8 +42,8 @@ class BurleySss {
   static void checkLimits(const Scene& scene, const RenderSettings& settings);
   /// Why each pass runs, for the frame plan ("burley.gbuffer", "burley.scatter").
   static std::string describe(const Scene& scene, const RenderSettings& settings, const std::string& pass);
-  /// What the passes allocate at width × height.
-  static std::size_t bytesFor(int width, int height);
+  /// What the passes allocate at width × height with `kernel` (separable: one more target and the taps).
+  static std::size_t bytesFor(int width, int height, BurleyKernel kernel);
 
   void renderGBuffer(const Scene& scene, const RenderSettings& settings, const SceneGeometry& geometry,
                      const CameraView& camera, const ShadowPass& shadows);
@@ -56,12 +57,21 @@ class BurleySss {
 
   const CameraIrradianceGBuffer& gbuffer() const { return gbuffer_; }
   const gpu::Texture& radiosity() const { return radiosity_; }  ///< RGBA32F: B [W/m²], alpha 1 where translucent
-  std::size_t bytes() const { return gbuffer_.bytes() + radiosity_.bytes(); }
+  std::size_t bytes() const {
+    return gbuffer_.bytes() + radiosity_.bytes() + intermediate_.bytes() + taps_.size();
+  }
 
  private:
+  void ensureTarget(gpu::Texture& texture, int width, int height);
+  /// The separable kernel's taps of every slot, uploaded when the materials or the count change.
+  void updateTaps(const Scene& scene, const RenderSettings& settings);
+
   CameraIrradianceGBuffer gbuffer_;
-  gpu::Program scatterProgram_;
+  gpu::Program scatterProgram_, separableProgram_;
   gpu::Texture radiosity_;
+  gpu::Texture intermediate_;  ///< the separable kernel's first pass
+  gpu::Buffer taps_;           ///< BurleyTapGpu per slot and tap (separable.comp)
+  std::vector<float> tapsKey_;  ///< the materials and tap count taps_ holds
   gpu::Sampler depthValues_;  ///< the shadow maps read as depths (their own compare mode off)
 };
 
@@ -81,7 +91,11 @@ class BurleyScatterPass final : public Pass {
   std::string name() const override { return "burley.scatter"; }
   std::string reason(const FrameState& state) const override;
   PassIo io(const FrameState& state) const override;
-  bool runsAgain(const FrameState& state) const override { return frames_ < state.settings.aaSamples; }
+  /// The disc kernel draws a new rotation for each of a still's frames; the separable one is the same
+  /// every frame.
+  bool runsAgain(const FrameState& state) const override {
+    return frames_ < (state.settings.burley.kernel == BurleyKernel::Disc ? state.settings.aaSamples : 1);
+  }
   bool refines() const override { return true; }
   void run(FrameContext& context, bool changed) override;
 

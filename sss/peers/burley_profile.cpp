@@ -1,5 +1,9 @@
 #include "sss/peers/burley_profile.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "gpu/glsl_shared.h"  // TALLOW_FN and GLM's GLSL vocabulary; no OpenGL
 
 // The shared profile file, in double (the GPU compiles the same lines in float).
@@ -41,5 +45,45 @@ double burleyTransmittance(double t, const BurleyBandParams& band) {
   return burley_f64::burleyTransmittance(t, shared(band));
 }
 double burleyScale(double albedo) { return burley_f64::burleyScale(albedo); }
+
+double burleyHalfPlaneMass(double a, double d) {
+  // ∫_a^∞ (R/A) 2r acos(a/r) dr with R/A = (e^{−r/d} + e^{−r/(3d)})/(8π d r): Simpson's rule in
+  // u = log(r − a + ε) over the decades the exponentials span (60 d: e^{−20} of the slow one).
+  const double lo = std::log(1e-9 * d), hi = std::log(60.0 * d);
+  constexpr int kSteps = 2000;
+  const double h = (hi - lo) / kSteps;
+  double sum = 0.0;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double x = std::exp(lo + i * h);  // r − a
+    const double r = a + x;
+    const double f = (std::exp(-r / d) + std::exp(-r / (3.0 * d))) / (8.0 * std::numbers::pi * d * r) * 2.0 * r *
+                     std::acos(std::min(1.0, a / r)) * x;  // dr = x du
+    sum += f * ((i == 0 || i == kSteps) ? 1.0 : (i % 2 ? 4.0 : 2.0));
+  }
+  return sum * h / 3.0;
+}
+
+std::vector<BurleyTap> burleySeparableTaps(const std::array<BurleyBandParams, 3>& bands, int halfTaps) {
+  const int k = std::max(halfTaps, 1);
+  const double dMax = std::max({bands[0].d, bands[1].d, bands[2].d});
+  const double radius = kBurleySeparableRadius * dMax;
+  std::vector<BurleyTap> taps(static_cast<std::size_t>(k) + 1);
+  for (int i = 0; i <= k; ++i) taps[static_cast<std::size_t>(i)].offset = radius * (double(i) / k) * (double(i) / k);
+  for (int c = 0; c < 3; ++c) {
+    const double d = bands[static_cast<std::size_t>(c)].d;
+    // The strip of tap i reaches from the midpoint to tap i − 1 to the midpoint to tap i + 1 (tap 0:
+    // symmetric about 0; tap K: to infinity). Its mass: H(lower) − H(upper).
+    double lowerMass = 0.5;  // H(0): the centre strip takes 2 (0.5 − H(m_1))
+    for (int i = 0; i <= k; ++i) {
+      const double upper = i == k ? -1.0 : 0.5 * (taps[static_cast<std::size_t>(i)].offset +
+                                                   taps[static_cast<std::size_t>(i) + 1].offset);
+      const double upperMass = upper < 0.0 ? 0.0 : burleyHalfPlaneMass(upper, d);
+      const double mass = lowerMass - upperMass;
+      taps[static_cast<std::size_t>(i)].weight[static_cast<std::size_t>(c)] = i == 0 ? 2.0 * mass : mass;
+      lowerMass = upperMass;
+    }
+  }
+  return taps;
+}
 
 }  // namespace tallow::sss

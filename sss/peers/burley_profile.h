@@ -4,6 +4,7 @@
 // total diffuse reflectance A and the shape parameter d a material gives, the profile, the density of
 // its sampled radius, the sampling and the transmittance through a thickness. Lengths in mm.
 #include <array>
+#include <vector>
 
 #include "sss/bssrdf/material.h"
 
@@ -26,5 +27,22 @@ double burleySampleRadius(double u1, double u2, double d);
 double burleyTransmittance(double t, const BurleyBandParams& band);
 /// The memo's fit s(A) (searchlight configuration, mean free path).
 double burleyScale(double albedo);
+
+/// The share of the profile's mass beyond the line x = a ≥ 0 [mm] of the plane:
+/// ∫_a^∞ (R(r)/A) 2r acos(a/r) dr (the arc of each circle beyond the line); 1/2 at a = 0.
+double burleyHalfPlaneMass(double a, double d);
+
+/// The separable kernel (Jimenez et al. 2015's structure with this profile, `burley.kernel=separable`):
+/// taps at offsets t_k = R (k/K)² for k = −K … K along a line, R = kBurleySeparableRadius · d_max,
+/// each weighing the profile's mass in its strip of the plane (between the midpoints to its
+/// neighbours; the outermost strips reach to infinity), per band, so that each band's weights sum
+/// to 1 and a horizontal pass then a vertical one give the profile's 2D mass on a uniform image.
+struct BurleyTap {
+  double offset = 0.0;              ///< t_k [mm]
+  std::array<double, 3> weight{};   ///< per band
+};
+inline constexpr double kBurleySeparableRadius = 8.0;
+/// Taps for k = 0 … K (the kernel is symmetric: negative k mirror positive ones), K ≥ 1.
+std::vector<BurleyTap> burleySeparableTaps(const std::array<BurleyBandParams, 3>& bands, int halfTaps);
 
 }  // namespace tallow::sss

@@ -65,3 +65,4 @@ TALLOW_FN real burleySampleRadius(real u1, real u2, real d) {
 TALLOW_FN real burleyTransmittance(real t, BurleyBand b) {
   return real(0.25) * b.albedo * (exp(-t / b.d) + real(3) * exp(-t / (real(3) * b.d)));
 }
+
