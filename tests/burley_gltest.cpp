@@ -109,6 +109,29 @@ TEST(Burley, AThinSlabLitFromBehindTransmitsTheProfilesMassBeyondItsThickness) {
   EXPECT_EQ(centreMean(s.render(), 1), 0.0);
 }
 
+TEST(Burley, APointLightBelowTheSlabTransmitsThroughItsCubeThickness) {
+  // The same thin medium lit by a point light 0.2 m below the slab's bottom face (light.type=point,
+  // I = 1 W/sr), seen from above: at the centre pixel the top face (0.25 m from the light) gets
+  // F_t(0)/π · (I / d²) F_t(0) T(t) with t the 50 mm the light's cube shadow map sees through
+  // (its stored depth turned back into a distance). Within 1%, as the directional case.
+  PresetSession s("slab", with(kSlabBurley, {"light.type=point", "light.position=0,-0.2,0", "light.intensity=1,1,1",
+                                             "material.sigma_a=0.01,0.012,0.014", "material.sigma_s=0.05,0.05,0.05"}));
+  const gpu::Image image = s.render();
+  const sss::Material& m = s.scene().objects[0].material;
+  const double ft = test::normalTransmittance(m.eta);
+  const auto bands = sss::burleyBands(m);
+  // The centre pixel's point: half a pixel (2.5 mm) from the axis in x and z; its distance and cosine.
+  const double h = 0.25, off = 0.24 / 48 * 0.5, d2 = h * h + 2 * off * off, cosine = h / std::sqrt(d2);
+  for (int c = 0; c < 3; ++c) {
+    const double thickness = 50.0 / cosine;  // along the ray, through the 50 mm slab
+    const double expected = ft / kPi * (cosine / d2) * test::fresnelT(cosine, m.eta) *
+                            sss::burleyTransmittance(thickness, bands[static_cast<std::size_t>(c)]);
+    const double ratio = image.at(image.width / 2, image.height / 2)[c] / expected;
+    std::printf("[ burley  ] point light, band %d: transmitted L / expected = %.5f\n", c, ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.01) << "band " << c;
+  }
+}
+
 TEST(Burley, RunsOnEveryPreset) {
   // Each preset of presets/ captured with method=burley at a small size: exit 0 and a finite frame.
   test::TempDir dir;
