@@ -236,14 +236,16 @@ int main(int argc, char** argv) {
   mapsBenchCmd->add_option("--out", mapsBench.out, "JSON file")->required();
 
   tallow::app::MeshOptions mesh;
-  auto* meshCmd = app.add_subcommand("mesh", "write the triangles of the preset's field objects at time T as a PLY (world units)");
+  auto* meshCmd = app.add_subcommand("mesh", "write the triangles of the preset's field objects at time T as a PLY or OBJ (world units), or with --frames N the animation as a numbered sequence");
   meshCmd->add_option("--preset", mesh.scene.preset, "preset name in presets/ or a path to a JSON file")->check(presetNamed());
   meshCmd->add_option("--set", mesh.scene.sets, "override a parameter: key=value (repeatable; see `tallow params`)");
   meshCmd->add_option("--time", mesh.timeS, "animation time [s]");
   meshCmd->add_option("--res", mesh.res, "lattice samples per axis (default: field.res)");
   meshCmd->add_flag("--cpu", mesh.cpu, "mesh with OpenVDB volumeToMesh on the same lattice instead of the GPU");
   meshCmd->add_option("--gl", mesh.gl, "OpenGL context: osmesa (default) or egl")->check(CLI::IsMember({"osmesa", "egl"}));
-  meshCmd->add_option("--out", mesh.out, "MESH.ply")->required();
+  meshCmd->add_option("--out", mesh.out, "MESH.ply or MESH.obj; with --frames, the sequence MESH_0000.ply, … (.obj)")->required();
+  meshCmd->add_option("--frames", mesh.frames, "write N meshes at --time + i / --fps, numbered (a mesh sequence for DCC tools)");
+  meshCmd->add_option("--fps", mesh.fps, "the sequence's frames per second (default 30)");
 
   tallow::app::FieldOptions field;
   auto* fieldCmd = app.add_subcommand("field", "evaluate the preset's field (value < 0 inside, gradient) at the points of a CSV");

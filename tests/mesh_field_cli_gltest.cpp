@@ -267,6 +267,7 @@ TEST(MeshFieldCli, SeveralFieldObjectsAreConcatenatedAndUnited) {
 TEST(MeshFieldCli, ErrorsAreOneLineAndWriteNothing) {
   test::TempDir dir;
   const auto out = (dir.path() / "out.file").string();
+  const auto meshOut = (dir.path() / "out.ply").string();
   const auto good = dir.write("good.csv", "x,y,z\n0,0,0\n").string();
   const auto header = dir.write("header.csv", "x,y\n0,0\n").string();
   const auto number = dir.write("number.csv", "x,y,z\n0,0,0\n\n0.5, 1e-3 ,0.25q\n").string();
@@ -282,12 +283,17 @@ TEST(MeshFieldCli, ErrorsAreOneLineAndWriteNothing) {
        ".*/number\\.csv:4:12: z: \"0\\.25q\" is not a finite number"},
       {{"field", "--preset", "bunny", "--in", good, "--out", out},
        "preset \"bunny\" has no field objects \\(objects with a \"field\": blob, candle or mesh\\)"},
-      {{"mesh", "--preset", "bunny", "--out", out},
+      {{"mesh", "--preset", "bunny", "--out", meshOut},
        "preset \"bunny\" has no field objects \\(objects with a \"field\": blob, candle or mesh\\)"},
-      {{"mesh", "--preset", "blob", "--res", "8", "--out", out}, "--res: field\\.res: 8 is out of range \\[16, 512\\]"},
-      {{"mesh", "--preset", "blob", "--res", "999", "--cpu", "--out", out},
+      {{"mesh", "--preset", "blob", "--res", "8", "--out", meshOut}, "--res: field\\.res: 8 is out of range \\[16, 512\\]"},
+      {{"mesh", "--preset", "blob", "--res", "999", "--cpu", "--out", meshOut},
        "--res: field\\.res: 999 is out of range \\[16, 512\\]"},
-      {{"mesh", "--preset", "blob", "--out", d + "/no/such/m.ply"}, "--out: folder .*/no/such does not exist"},
+      // The folder is created as capture's --out is, unless a file stands in its way.
+      {{"mesh", "--preset", "blob", "--out", good + "/m.ply"}, "--out: .*/good\\.csv is not a folder"},
+      {{"mesh", "--preset", "blob", "--out", out}, "--out: .*/out\\.file is neither MESH\\.ply nor MESH\\.obj"},
+      {{"mesh", "--preset", "blob", "--frames", "-1", "--out", meshOut}, "--frames: must not be negative"},
+      {{"mesh", "--preset", "blob", "--frames", "2", "--fps", "0", "--out", meshOut},
+       "--fps: 0 is out of range \\[0\\.001, 10000\\] frames per second"},
   };
   for (const auto& c : cases) {
     const auto r = runTallow(c.args);

@@ -1,5 +1,6 @@
 #include "app/commands/mesh_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "geometry/candle_field.h"
 #include "geometry/cpu_mesher.h"
 #include "geometry/gpu_dual_contouring.h"
+#include "geometry/obj_writer.h"
 #include "geometry/ply_writer.h"
 #include "gpu/gl_context.h"
 #include "sss/field_objects.h"
@@ -81,26 +83,39 @@ sss::FieldMeshes drawnFieldMeshes(const LoadedScene& loaded, const std::string& 
   return meshEachField(placeFields(scene, loaded.presetName), loaded.config.render, timeS, meshing.shaders.get());
 }
 
-geometry::TriangleMesh meshFields(const MeshOptions& options, LoadedScene& loaded) {
-  checkTime("--time", options.timeS);
-  if (options.res != 0) {
-    try {
-      parameterRegistry(loaded.materials).set(loaded.config, "field.res", options.res);
-    } catch (const InputError& e) {
-      throw InputError(std::string("--res: ") + e.what());
-    }
+namespace {
+
+/// --res applied to the loaded scene (one line on a bad value).
+void applyRes(const MeshOptions& options, LoadedScene& loaded) {
+  if (options.res == 0) return;
+  try {
+    parameterRegistry(loaded.materials).set(loaded.config, "field.res", options.res);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--res: ") + e.what());
   }
-  const std::vector<PlacedField> fields = placeFields(loaded.config.scene, loaded.presetName);
-  std::unique_ptr<MeshingContext> meshing;
-  if (!options.cpu) meshing = std::make_unique<MeshingContext>(options.gl, options.scene.shaderDir);
-  const sss::FieldMeshes parts =
-      meshEachField(fields, loaded.config.render, options.timeS, meshing ? meshing->shaders.get() : nullptr);
+}
+
+/// Every field object of `loaded` at t in world units, contoured by `shaders` (null: on the CPU).
+geometry::TriangleMesh worldMesh(const LoadedScene& loaded, const std::vector<PlacedField>& fields, double timeS,
+                                 const gpu::ShaderLibrary* shaders) {
+  const sss::FieldMeshes parts = meshEachField(fields, loaded.config.render, timeS, shaders);
   geometry::TriangleMesh world;
   for (const PlacedField& f : fields) appendWorld(world, parts.at(f.objectIndex), f.model);
   if (world.triangles.empty())  // e.g. a --set that moved everything out of the lattice
     throw InputError("the field objects of preset " + quote(loaded.presetName) + " have no surface at t = " +
-                     std::to_string(options.timeS) + " s");
+                     std::to_string(timeS) + " s");
   return world;
+}
+
+}  // namespace
+
+geometry::TriangleMesh meshFields(const MeshOptions& options, LoadedScene& loaded) {
+  checkTime("--time", options.timeS);
+  applyRes(options, loaded);
+  const std::vector<PlacedField> fields = placeFields(loaded.config.scene, loaded.presetName);
+  std::unique_ptr<MeshingContext> meshing;
+  if (!options.cpu) meshing = std::make_unique<MeshingContext>(options.gl, options.scene.shaderDir);
+  return worldMesh(loaded, fields, options.timeS, meshing ? meshing->shaders.get() : nullptr);
 }
 
 namespace {
@@ -108,11 +123,11 @@ namespace {
 /// What the model of each candle field says of itself at t, as PLY comments (`comment tallow.candle
 /// NAME key value …`, field units): what scripts/results_melt.py compares its measurements of the
 /// mesh with.
-std::vector<std::string> modelComments(const MeshOptions& options, const LoadedScene& loaded) {
+std::vector<std::string> modelComments(double timeS, const LoadedScene& loaded) {
   std::vector<std::string> comments;
   for (const sss::SceneObject& o : loaded.config.scene.objects) {
     if (o.shape != sss::ShapeKind::Field) continue;
-    const std::optional<geometry::CandleField> candle = sss::candleOf(o.field, options.timeS);
+    const std::optional<geometry::CandleField> candle = sss::candleOf(o.field, timeS);
     if (!candle) continue;
     const geometry::CandleField& c = *candle;
     char line[512];
@@ -120,7 +135,7 @@ std::vector<std::string> modelComments(const MeshOptions& options, const LoadedS
                   "tallow.candle %s t %.9g rim_height %.9g pool_y %.9g pool_radius %.9g pool_depth %.9g "
                   "drips_started %d drips_frozen %d drip_volume %.9g puddle_volume %.9g puddle_area %.9g "
                   "volume_target %.9g",
-                  o.name.empty() ? "candle" : o.name.c_str(), options.timeS, c.rimHeight(), c.poolY(), c.poolRadius(),
+                  o.name.empty() ? "candle" : o.name.c_str(), timeS, c.rimHeight(), c.poolY(), c.poolRadius(),
                   c.poolDepth(), c.dripsStarted(), c.dripsFrozen(), c.dripVolume(), c.puddleVolume(), c.puddleArea(),
                   c.volumeTarget());
     std::string text = line;
@@ -131,17 +146,56 @@ std::vector<std::string> modelComments(const MeshOptions& options, const LoadedS
   return comments;
 }
 
+/// Writes `mesh` as PLY or OBJ by the file's extension.
+void writeMesh(const std::filesystem::path& file, const geometry::TriangleMesh& mesh,
+               const std::vector<std::string>& comments) {
+  if (file.extension() == ".obj") geometry::writeObj(file, mesh, comments);
+  else geometry::writePly(file, mesh, comments);
+}
+
 }  // namespace
+
+std::vector<std::string> meshSequenceFiles(const std::string& out, int frames) {
+  const std::filesystem::path base(out);
+  const std::filesystem::path stem = base.parent_path() / base.stem();
+  const int digits = std::max(4, static_cast<int>(std::to_string(std::max(frames - 1, 0)).size()));
+  std::vector<std::string> files;
+  for (int i = 0; i < frames; ++i) {
+    std::string number = std::to_string(i);
+    number.insert(0, static_cast<std::size_t>(digits) - std::min<std::size_t>(number.size(), digits), '0');
+    files.push_back(stem.string() + "_" + number + base.extension().string());
+  }
+  return files;
+}
 
 int runMesh(const MeshOptions& options) {
   if (options.out.empty()) throw InputError("mesh: --out MESH.ply is required");
   const std::filesystem::path out(options.out);
-  checkOutputFile("--out", out);
+  if (out.extension() != ".ply" && out.extension() != ".obj")
+    throw InputError("--out: " + options.out + " is neither MESH.ply nor MESH.obj");
+  if (options.frames < 0) throw InputError("--frames: must not be negative");
+  if (options.frames > 0) checkFps("--fps", options.fps);
+  checkTime("--time", options.timeS);
+  const std::vector<std::string> files =
+      options.frames > 0 ? meshSequenceFiles(options.out, options.frames) : std::vector<std::string>{options.out};
+  // The folder is created as capture's --out is.
+  for (const std::string& f : files) checkOutputFileInNewFolder("--out", f, {".ply", ".obj"});
   LoadedScene loaded = loadScene(options.scene);
-  const geometry::TriangleMesh mesh = meshFields(options, loaded);
-  geometry::writePly(out, mesh, modelComments(options, loaded));
-  std::printf("tallow: %zu triangle(s), %zu vertices (%s) -> %s\n", mesh.triangles.size(), mesh.positions.size(),
-              options.cpu ? "OpenVDB volumeToMesh" : "GPU dual contouring", options.out.c_str());
+  applyRes(options, loaded);
+  const std::vector<PlacedField> fields = placeFields(loaded.config.scene, loaded.presetName);
+  std::unique_ptr<MeshingContext> meshing;  // one context for the whole sequence
+  if (!options.cpu) meshing = std::make_unique<MeshingContext>(options.gl, options.scene.shaderDir);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    // Frame i of the sequence at t + i / fps (the times capture uses).
+    const double t = options.frames > 0 ? options.timeS + static_cast<double>(i) / options.fps : options.timeS;
+    const geometry::TriangleMesh mesh = worldMesh(loaded, fields, t, meshing ? meshing->shaders.get() : nullptr);
+    // The folder once the first mesh is made (a scene without a surface leaves none behind).
+    if (const std::filesystem::path folder = out.parent_path(); i == 0 && !folder.empty())
+      std::filesystem::create_directories(folder);
+    writeMesh(files[i], mesh, modelComments(t, loaded));
+    std::printf("tallow: t = %g s: %zu triangle(s), %zu vertices (%s) -> %s\n", t, mesh.triangles.size(),
+                mesh.positions.size(), options.cpu ? "OpenVDB volumeToMesh" : "GPU dual contouring", files[i].c_str());
+  }
   return 0;
 }
 

@@ -1,9 +1,12 @@
 #pragma once
 // `tallow mesh`: the triangles the renderer draws for a preset's field objects at time t, in world
-// units, as one binary PLY (all field objects concatenated). Each field is sampled exactly as the
+// units, as one binary PLY or an OBJ (all field objects concatenated), or with --frames N the
+// animation as a numbered sequence NAME_0000.ply … (or .obj) at --fps, what DCC tools import as a
+// mesh sequence, normals included. Each field is sampled exactly as the
 // renderer samples it (sss::FieldSource::sample) and isosurfaced by the GPU dual contouring, or,
 // with --cpu, by OpenVDB's volumeToMesh on the same lattice.
 #include <string>
+#include <vector>
 
 #include "app/config/setup.h"
 #include "geometry/triangle_mesh.h"
@@ -17,8 +20,14 @@ struct MeshOptions {
   int res = 0;                ///< samples per axis; 0 = the preset's field.res
   bool cpu = false;           ///< OpenVDB volumeToMesh instead of the GPU
   std::string gl = "osmesa";  ///< OpenGL context for the GPU path
-  std::string out;            ///< MESH.ply
+  std::string out;            ///< MESH.ply or MESH.obj (with frames: the sequence's base name)
+  int frames = 0;             ///< > 0: a numbered sequence of this many meshes from timeS on
+  double fps = 30.0;          ///< the sequence's frames per second
 };
+
+/// The files of a sequence of `frames` meshes named after `out` (MESH.ply → MESH_0000.ply, …; at
+/// least 4 digits, more when frames need them).
+std::vector<std::string> meshSequenceFiles(const std::string& out, int frames);
 
 /// The triangles the renderer draws for each field object of `loaded` at time t, by object index, in
 /// the field's units (sampled as the renderer samples it, contoured by the GPU's dual contouring
