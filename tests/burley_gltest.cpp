@@ -132,6 +132,31 @@ TEST(Burley, APointLightBelowTheSlabTransmitsThroughItsCubeThickness) {
   }
 }
 
+TEST(Burley, AMaterialInOpenPbrTermsShowsItsColourOnTheSlab) {
+  // Issue 42, point 3: the slab's marble replaced by {"subsurface_color": [0.6, 0.35, 0.1],
+  // "subsurface_radius_mm": 2, "subsurface_radius_scale": [1, 0.5, 0.25], "eta": 1.4}. The colour is
+  // the standard dipole's total of the σ it becomes, which is the profile's A: L = F_t(0)² E c/π per
+  // band, the colour itself, exactly (uniform E).
+  test::TempDir dir;
+  std::ifstream in(std::string(TALLOW_TEST_SOURCE_DIR) + "/presets/slab.json");
+  nlohmann::json preset = nlohmann::json::parse(in);
+  preset["objects"][0]["material"] = {{"subsurface_color", {0.6, 0.35, 0.1}},
+                                      {"subsurface_radius_mm", 2.0},
+                                      {"subsurface_radius_scale", {1.0, 0.5, 0.25}},
+                                      {"eta", 1.4}};
+  const auto file = dir.path() / "openpbr_slab.json";
+  std::ofstream(file) << preset.dump(2);
+  PresetSession s(file.string(), kSlabBurley);
+  const gpu::Image image = s.render();
+  const double ft = test::normalTransmittance(1.4);
+  const double color[3] = {0.6, 0.35, 0.1};
+  for (int c = 0; c < 3; ++c) {
+    const double ratio = centreMean(image, c) / (ft * ft * color[c] / kPi);
+    std::printf("[ burley  ] OpenPBR material, band %d: L / (F_t(0)² E c/π) = %.5f\n", c, ratio);
+    EXPECT_NEAR(ratio, 1.0, 2e-3) << "band " << c;
+  }
+}
+
 TEST(Burley, RunsOnEveryPreset) {
   // Each preset of presets/ captured with method=burley at a small size: exit 0 and a finite frame.
   test::TempDir dir;

@@ -342,6 +342,27 @@ TEST(Preset, Materials) {
             "p.json:4:37: invalid material: eta must be a positive number (0)");
 }
 
+TEST(Preset, AMaterialInOpenPbrTerms) {
+  // Issue 42, point 3: subsurface_color, subsurface_radius_mm, subsurface_radius_scale, eta (and g)
+  // become σ_a and σ_s (sss/bssrdf/subsurface_appearance.h: 1/σ_t' is the radius of each band).
+  const Config c = parse(withObject(
+      R"({"shape": "sphere", "material": {"subsurface_color": [0.8, 0.5, 0.2], "subsurface_radius_mm": 2,
+          "subsurface_radius_scale": [1, 0.5, 0.25], "eta": 1.4}})"));
+  const sss::Material& m = c.scene.objects[0].material;
+  EXPECT_EQ(m.name, "custom (subsurface colour)");
+  EXPECT_FLOAT_EQ(m.eta, 1.4f);
+  EXPECT_NEAR(1.0 / (m.sigma_a.b + m.sigma_s.b), 0.5, 1e-6);  // g = 0: σ_t' = σ_t
+  // Errors at the value, one line, as the coefficients' are (column 64: the "1.5", 4 columns of
+  // indentation before the object).
+  EXPECT_EQ(errorOf(withObject(R"({"shape": "sphere", "material": {"subsurface_color": [0.8, 1.5, 0.2], "subsurface_radius_mm": 2}})")),
+            "p.json:4:64: subsurface_color: 1.5 is out of range [0, 1]");
+  EXPECT_EQ(errorOf(withObject(R"({"shape": "sphere", "material": {"subsurface_color": [0.8, 0.5, 0.2]}})")),
+            "p.json:4:37: missing \"subsurface_radius_mm\"");
+  EXPECT_NE(errorOf(withObject(R"({"shape": "sphere", "material": {"subsurface_color": [0.8, 0.5, 0.2], "subsurface_radius_mm": 2, "sigma_a": [1, 1, 1]}})"))
+                .find("unknown key"),
+            std::string::npos);
+}
+
 TEST(Preset, AnimationStartTime) {
   EXPECT_FLOAT_EQ(parse(withObject(R"({"shape": "sphere"})", R"(, "animation": {"duration_s": 20, "start_s": 12})"))
                       .scene.startS,

@@ -15,6 +15,7 @@
 #include "app/config/registry.h"
 #include "geometry/candle_field.h"
 #include "gpu/utf8.h"
+#include "sss/bssrdf/subsurface_appearance.h"
 
 namespace tallow::app {
 
@@ -66,6 +67,12 @@ constexpr Range kCandleDurationS{0.0, 1e6, true};  ///< animation seconds of the
 constexpr Range kCandleTimeScale{1.0, 3600.0, false};  ///< real seconds per animation second
 constexpr Range kMeltDurationS{0.0, 1e6, true};    ///< seconds until a mesh field has melted
 const std::vector<std::string> kMaterialKeys = {"sigma_s", "sigma_a", "g", "eta", "from", "scale"};
+/// A material in OpenPBR's terms (sss/bssrdf/subsurface_appearance.h).
+const std::vector<std::string> kAppearanceKeys = {"subsurface_color", "subsurface_radius_mm", "subsurface_radius_scale",
+                                                  "eta", "g"};
+constexpr Range kSubsurfaceColor{0.0, 1.0};           ///< total diffuse reflectance per band
+constexpr Range kSubsurfaceRadiusMm{0.0, 1e6, true};  ///< mean free path [mm]
+constexpr Range kSubsurfaceRadiusScale{0.0, 1e6, true};
 constexpr Range kMaterialScale{0.0, 1e6, true};  ///< multiplies σ_s and σ_a of a "from" material
 const std::vector<std::string> kAnimationKeys = {"duration_s", "loop", "start_s"};
 const std::vector<std::string> kVolumeKeys = {"material", "axis", "period", "fraction", "turbulence", "seed"};
@@ -496,6 +503,7 @@ class PresetReader {
       doc_.fail(p, "unknown material " + quote(name) + didYouMean(name, names));
     }
     if (!v.is_object()) doc_.fail(p, "material: expected a name from materials.csv or an object of coefficients");
+    if (has(p, "subsurface_color")) return readAppearance(p);
     checkKeys(p, kMaterialKeys, "material coefficients");
     sss::Material m;
     m.name = "custom";
@@ -534,6 +542,28 @@ class PresetReader {
       doc_.fail(p, std::string("invalid material: ") + e.what());
     }
     return m;
+  }
+
+  /// "material": {"subsurface_color": [r, g, b], "subsurface_radius_mm": s, "subsurface_radius_scale":
+  /// [r, g, b], "eta": e, "g": g}: OpenPBR's terms, turned into σ_a and σ_s by inverting the standard
+  /// dipole's total diffuse reflectance (sss/bssrdf/subsurface_appearance.h).
+  sss::Material readAppearance(const Ptr& p) const {
+    checkKeys(p, kAppearanceKeys, "a material in OpenPBR's terms");
+    sss::SubsurfaceAppearance a;
+    a.color = vec3(require(p, "subsurface_color"), "subsurface_color", kSubsurfaceColor);
+    a.radiusMm = number(require(p, "subsurface_radius_mm"), "subsurface_radius_mm", kSubsurfaceRadiusMm);
+    if (has(p, "subsurface_radius_scale"))
+      a.radiusScale = vec3(p / "subsurface_radius_scale", "subsurface_radius_scale", kSubsurfaceRadiusScale);
+    a.eta = has(p, "eta") ? number(p / "eta", "eta", kEta) : kDefaultEta;
+    if (has(p, "g")) {
+      const Ptr g = p / "g";
+      a.g = at(g).is_number() ? glm::vec3(number(g, "g", kAnisotropy)) : vec3(g, "g", kAnisotropy);
+    }
+    try {
+      return sss::materialFromAppearance(a);
+    } catch (const std::invalid_argument& e) {
+      doc_.fail(p, std::string("invalid material: ") + e.what());
+    }
   }
 
   /// "volume": {"material": …, "period": 0.01, "axis": [0, 1, 0], "fraction": 0.5, "turbulence": 0,

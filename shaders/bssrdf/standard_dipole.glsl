@@ -32,3 +32,11 @@ TALLOW_FN BssrdfEval standardDipole(real3 xi, real3 xo, BssrdfCoefficients k) {
   e.scale = e.scale / BSSRDF_PI;
   return e;
 }
+
+// ∫₀^∞ R_d 2πr dr, (α'/2)(1 + e^{−(4/3)A√(3(1−α'))}) e^{−√(3(1−α'))} (Jensen et al. 2001), with their
+// boundary term A = (1 + F_dr)/(1 − F_dr): the total diffuse reflectance, a function of α' and η
+// alone (method=burley's A; a subsurface colour's inversion, sss/bssrdf/subsurface_appearance.h).
+TALLOW_FN real standardDipoleTotalRd(BssrdfCoefficients k) {
+  real s = sqrt(real(3) * (real(1) - k.alphaP));
+  return real(0.5) * k.alphaP * (real(1) + exp(real(-4) / real(3) * k.aJensen * s)) * exp(-s);
+}

@@ -192,6 +192,11 @@ void validateBssrdfConfig(const BssrdfConfig& c) {
   }
 }
 
+double dipoleTotalReflectance(double reducedAlbedo, double eta) {
+  // Any σ_t' will do: the total depends on α' and η alone.
+  return shared_f64::standardDipoleTotalRd(shared_f64::bssrdfCoefficients(1.0 - reducedAlbedo, reducedAlbedo, 0.0, eta));
+}
+
 BssrdfCoefficients bssrdfCoefficients(double sigma_a, double sigma_s, double g, double eta) {
   const shared_f64::BssrdfCoefficients k = shared_f64::bssrdfCoefficients(sigma_a, sigma_s, g, eta);
   BssrdfCoefficients out;

@@ -99,6 +99,10 @@ struct BssrdfCoefficients {
 };
 BssrdfCoefficients bssrdfCoefficients(double sigma_a, double sigma_s, double g, double eta);
 
+/// The standard dipole's total diffuse reflectance ∫ R_d 2πr dr (Jensen et al. 2001) of a medium of
+/// reduced albedo α' ∈ [0, 1] behind a boundary of relative index η (shaders/bssrdf/standard_dipole.glsl).
+double dipoleTotalReflectance(double reducedAlbedo, double eta);
+
 /// C_φ(η), C_E(η) from the polynomial fits (appendix A; η clamped to [0.4, 2.5]) …
 double cPhiPolynomial(double eta);
 double cEPolynomial(double eta);

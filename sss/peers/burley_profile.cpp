@@ -13,6 +13,7 @@ using real = double;
 #include "shaders/bssrdf/real.glsl"
 #include "shaders/bssrdf/fresnel.glsl"
 #include "shaders/bssrdf/coefficients.glsl"
+#include "shaders/bssrdf/standard_dipole.glsl"
 #include "shaders/peers/burley/profile.glsl"
 }  // namespace tallow::sss::burley_f64
 

@@ -6,7 +6,7 @@
 //   R(r) = A (e^{−r/d} + e^{−r/(3d)}) / (8π d r)                       (the memo, §3)
 // integrates over the plane to A, the total diffuse reflectance: ∫₀^∞ R(r) 2πr dr = A. Here A is
 // the standard dipole's total (Jensen et al. 2001), so that the profile carries the same light as
-// the image-space peer's R_d, and d = ℓ/s with ℓ = 1/σ_t' the mean free path and s the memo's fit of
+// the image-space peer's R_d (standardDipoleTotalRd, bssrdf/standard_dipole.glsl), and d = ℓ/s with ℓ = 1/σ_t' the mean free path and s the memo's fit of
 // the scaling factor for the searchlight configuration with ℓ (the memo, §5):
 //   s = 1.85 − A + 7 |A − 0.8|³.
 // The radius is importance-sampled exactly: r's density 2πr R(r)/A = (e^{−r/d} + 3 e^{−r/(3d)}/3)/(4d)
@@ -15,16 +15,10 @@
 // does) is the profile's mass beyond t: ∫_t^∞ R(s) 2πs ds = A (e^{−t/d} + 3 e^{−t/(3d)}) / 4.
 #ifdef TALLOW_GLSL
 #include "bssrdf/coefficients.glsl"
+#include "bssrdf/standard_dipole.glsl"
 #endif
 
 const real BURLEY_PI = 3.14159265358979323846;
-
-// ∫₀^∞ R_d 2πr dr of the standard dipole, (α'/2)(1 + e^{−(4/3)A√(3(1−α'))}) e^{−√(3(1−α'))}
-// (Jensen et al. 2001), with their boundary term A = (1 + F_dr)/(1 − F_dr).
-TALLOW_FN real standardDipoleTotalRd(BssrdfCoefficients k) {
-  real s = sqrt(real(3) * (real(1) - k.alphaP));
-  return real(0.5) * k.alphaP * (real(1) + exp(real(-4) / real(3) * k.aJensen * s)) * exp(-s);
-}
 
 // The memo's scaling factor s(A), searchlight configuration, ℓ the mean free path (§5).
 TALLOW_FN real burleyScale(real A) {
