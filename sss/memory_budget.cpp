@@ -140,10 +140,9 @@ std::size_t dualContouringBytes(int samplesPerAxis) {
 }
 
 std::size_t imageSpaceBytes(int width, int height, int translucentObjects, const ImageSpaceSettings& s) {
-  // ImageSpaceSss::ensureTargets: position, irradiance, two sums and two coverages in RGBA32F,
-  // the normal in RGBA16F, depth; then the sample pattern of every translucent slot.
-  const std::size_t targets = 6 * screen(GL_RGBA32F, width, height) + screen(GL_RGBA16F, width, height) +
-                              screen(GL_DEPTH_COMPONENT32F, width, height);
+  // The camera's irradiance G-buffer, then ImageSpaceSss::ensureTargets' two sums and two coverages
+  // in RGBA32F; then the sample pattern of every translucent slot.
+  const std::size_t targets = CameraIrradianceGBuffer::bytesFor(width, height) + 4 * screen(GL_RGBA32F, width, height);
   const std::size_t pattern = static_cast<std::size_t>(std::max(translucentObjects, 1)) *
                               static_cast<std::size_t>(s.tile * s.tile) * static_cast<std::size_t>(s.samples) *
                               sizeof(ImageSpacePatternRecord);

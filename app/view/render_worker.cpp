@@ -3,7 +3,6 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include <chrono>
 #include <stdexcept>
 
 namespace tallow::app {
@@ -129,28 +128,18 @@ RenderResult RenderWorker::render(RenderJob& job) {
     result.error = "this scene could not be built (see above); load another preset";
     return result;
   }
-  // As ViewSession::render: a configuration the GPU refuses is replaced by the last that rendered.
-  ViewSession::Frame& frame = result.frame;
-  frame.timeS = job.timeS;
   if (job.holdRefinement) renderer_->holdRefinement();
-  const auto start = std::chrono::steady_clock::now();
-  try {
-    frame.gpu = renderer_->render(job.config.scene, job.config.render, job.timeS);
-    lastGood_ = job.config;
-  } catch (const std::invalid_argument& e) {
-    frame.refused = e.what();
-    frame.gpu = renderer_->render(lastGood_.scene, lastGood_.render, job.timeS);
-  }
-  frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const Config& shown = lastGood_;
-  result.config = shown;
+  result.config = job.config;  // the configuration rendered: the job's, or the last good one if refused
+  result.frame = renderOrLastGood(*renderer_, result.config, lastGood_, job.timeS);
+  ViewSession::Frame& frame = result.frame;
+  const Config& shown = result.config;
   if (job.measure) {
     renderer_->resolveTimings(frame.gpu, true);
+    frame.shown = renderer_->latestTimings();  // with this frame's times, now read
     result.triangles = renderer_->triangleCount();
   } else {
     result.triangles = renderer_->triangleCountIfAvailable();
   }
-  frame.shown = renderer_->latestTimings();
   result.summary = summarize(*renderer_, shown, job.timeS);
 
   const int slot = freeSlot();

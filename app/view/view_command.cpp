@@ -289,6 +289,10 @@ int runView(const ViewOptions& options) {
   auto lastTriangles = last - std::chrono::hours(1);
   int width = 0, height = 0;
   int imageW = session.config().render.width, imageH = session.config().render.height;
+  // Where the panel and a picture of `c`'s size lie in the window as it is now.
+  const auto layoutFor = [&](const Config& c) {
+    return layoutView(width, height, panelVisible ? panel.width() : 0, c.render.width, c.render.height);
+  };
   // The animation clock before a render: by --fps, or by the wall time since the last render, at
   // most --max-step (a slow machine plays slower instead of skipping).
   const auto advanceClock = [&](bool hold) {
@@ -322,9 +326,7 @@ int runView(const ViewOptions& options) {
     record.changed = changedParameters(parameters, now);
     parameters = std::move(now);
     record.sss = session.summary().mapsRecord;
-    record.view = layoutJson(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width,
-                                        shown.render.height),
-                             width, height);
+    record.view = layoutJson(layoutFor(shown), width, height);
     record.view["playing"] = playing;
     record.view["real_time_share"] = feedback.realTimeShare;
     record.view["script_step"] = scriptStep;  // the rest of a frame's script after a screenshot
@@ -488,8 +490,7 @@ int runView(const ViewOptions& options) {
         feedback.status = (requests.undo ? "undid " : "redid ") + what;
         feedback.statusIsError = false;
       }
-      const ViewLayout layout = layoutView(width, height, panelVisible ? panel.width() : 0, session.config().render.width,
-                                           session.config().render.height);
+      const ViewLayout layout = layoutFor(session.config());
       mouseCamera(session, layout.image.height);
       // While the camera or a widget moves, a preview: the progressive passes keep what they hold
       // instead of accumulating more (Renderer::holdRefinement); the first still frame refines again.
@@ -533,8 +534,7 @@ int runView(const ViewOptions& options) {
                                                shown.render.width, shown.render.height);
         if (!debugWhere.empty() && !feedback.debugNote.empty()) throw InputError(debugWhere + ": " + feedback.debugNote);
         debugWhere.clear();
-        canvas.present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
-                       width, height);
+        canvas.present(layoutFor(shown), width, height);
       } else {
         if (!worker->busy()) {  // the thread is free: the next frame, as things stand now
           advanceClock(false);
@@ -553,8 +553,7 @@ int runView(const ViewOptions& options) {
           movedSinceJob = false;
         }
         const Config& shown = session.config();
-        worker->present(layoutView(width, height, panelVisible ? panel.width() : 0, shown.render.width, shown.render.height),
-                        width, height);
+        worker->present(layoutFor(shown), width, height);
         if (renders == 0) drawFirstFrameNotice(session.presetName());
       }
       // The title says what the picture waits for, where the panel may be hidden (F1) or scrolled.

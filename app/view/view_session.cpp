@@ -123,22 +123,26 @@ std::string ViewSession::redo() {
   return label;
 }
 
-ViewSession::Frame ViewSession::render() {
-  Config& config = loaded_.config;
-  Frame frame;
-  frame.timeS = playback_->time();
+ViewSession::Frame renderOrLastGood(sss::Renderer& renderer, Config& config, Config& lastGood, double timeS) {
+  ViewSession::Frame frame;
+  frame.timeS = timeS;
   const auto start = std::chrono::steady_clock::now();
   try {
-    frame.gpu = renderer_->render(config.scene, config.render, frame.timeS);
-    lastGood_ = config;
+    frame.gpu = renderer.render(config.scene, config.render, timeS);
+    lastGood = config;
   } catch (const std::invalid_argument& e) {
     frame.refused = e.what();
-    config = lastGood_;
-    frame.gpu = renderer_->render(config.scene, config.render, frame.timeS);
+    config = lastGood;
+    frame.gpu = renderer.render(config.scene, config.render, timeS);
   }
   frame.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  frame.shown = renderer_->latestTimings();
-  summary_ = summarize(*renderer_, config, frame.timeS);
+  frame.shown = renderer.latestTimings();
+  return frame;
+}
+
+ViewSession::Frame ViewSession::render() {
+  Frame frame = renderOrLastGood(*renderer_, loaded_.config, lastGood_, playback_->time());
+  summary_ = summarize(*renderer_, loaded_.config, frame.timeS);
   return frame;
 }
 

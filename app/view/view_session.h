@@ -135,4 +135,10 @@ class ViewSession {
   int generation_ = 0;
 };
 
+/// Renders `config` at `timeS` with `renderer` (Frame's wall time and the newest known GPU times
+/// included); when the GPU refuses it (std::invalid_argument, e.g. RadiosityMaps::checkLimits),
+/// puts `lastGood` back into `config`, renders that and says why in Frame::refused. `lastGood`
+/// becomes `config` when it renders. Shared by the window's lockstep loop and its render thread.
+ViewSession::Frame renderOrLastGood(sss::Renderer& renderer, Config& config, Config& lastGood, double timeS);
+
 }  // namespace tallow::app

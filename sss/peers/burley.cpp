@@ -24,10 +24,6 @@ constexpr int kGroupSize = 8;  // scatter.comp's local size, both axes
 
 BurleySss& burley(FrameContext& context) { return context.modules.obtain<BurleySss>(context.shaders); }
 
-std::size_t screenBytes(GLenum format, int width, int height) {
-  return gpu::Texture::bytesFor(GL_TEXTURE_2D, format, width, height, 1, 1);
-}
-
 }  // namespace
 
 BurleySss::BurleySss(const gpu::ShaderLibrary& shaders)
@@ -74,17 +70,15 @@ std::string BurleySss::describe(const Scene& scene, const RenderSettings& settin
 
 std::size_t BurleySss::bytesFor(int width, int height, BurleyKernel kernel) {
   const std::size_t separable = kernel == BurleyKernel::Separable
-                                    ? screenBytes(GL_RGBA32F, width, height) +
+                                    ? screenTextureBytes(GL_RGBA32F, width, height) +
                                           static_cast<std::size_t>(kMaxTranslucentObjects * kTapStride) * 4 * sizeof(float)
                                     : 0;
-  return CameraIrradianceGBuffer::bytesFor(width, height) + screenBytes(GL_RGBA32F, width, height) + separable;
+  return CameraIrradianceGBuffer::bytesFor(width, height) + screenTextureBytes(GL_RGBA32F, width, height) + separable;
 }
 
 void BurleySss::ensureTarget(gpu::Texture& texture, int width, int height) {
-  if (texture.id() && texture.width() == width && texture.height() == height) return;
-  texture = gpu::Texture::create2D(GL_RGBA32F, width, height);
-  texture.setFilter(GL_NEAREST, GL_NEAREST);
-  texture.setWrap(GL_CLAMP_TO_EDGE);
+  if (!texture.id() || texture.width() != width || texture.height() != height)
+    texture = screenTexture(GL_RGBA32F, width, height);
 }
 
 void BurleySss::updateTaps(const Scene& scene, const RenderSettings& settings) {

@@ -7,6 +7,8 @@ namespace {
 
 constexpr GLuint kDirectionalShadowUnit = 0, kPointShadowUnit = 1;
 
+}  // namespace
+
 gpu::Texture screenTexture(GLenum format, int width, int height) {
   gpu::Texture t = gpu::Texture::create2D(format, width, height);
   t.setFilter(GL_NEAREST, GL_NEAREST);
@@ -14,18 +16,16 @@ gpu::Texture screenTexture(GLenum format, int width, int height) {
   return t;
 }
 
-std::size_t screenBytes(GLenum format, int width, int height) {
+std::size_t screenTextureBytes(GLenum format, int width, int height) {
   return gpu::Texture::bytesFor(GL_TEXTURE_2D, format, width, height, 1, 1);
 }
-
-}  // namespace
 
 CameraIrradianceGBuffer::CameraIrradianceGBuffer(const gpu::ShaderLibrary& shaders)
     : program_(shaders, {{{GL_VERTEX_SHADER, "surface.vert"}, {GL_FRAGMENT_SHADER, "peers/image_space/gbuffer.frag"}}}) {}
 
 std::size_t CameraIrradianceGBuffer::bytesFor(int width, int height) {
-  return 2 * screenBytes(GL_RGBA32F, width, height) + screenBytes(GL_RGBA16F, width, height) +
-         screenBytes(GL_DEPTH_COMPONENT32F, width, height);
+  return 2 * screenTextureBytes(GL_RGBA32F, width, height) + screenTextureBytes(GL_RGBA16F, width, height) +
+         screenTextureBytes(GL_DEPTH_COMPONENT32F, width, height);
 }
 
 std::size_t CameraIrradianceGBuffer::bytes() const {

@@ -19,6 +19,12 @@
 
 namespace tallow::sss {
 
+/// A width × height 2D target of `format` read texel by texel (nearest, clamped): what the
+/// screen-space peers' passes write and read.
+gpu::Texture screenTexture(GLenum format, int width, int height);
+/// Its bytes.
+std::size_t screenTextureBytes(GLenum format, int width, int height);
+
 class CameraIrradianceGBuffer {
  public:
   explicit CameraIrradianceGBuffer(const gpu::ShaderLibrary& shaders);

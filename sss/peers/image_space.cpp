@@ -35,13 +35,6 @@ std::size_t patternBytes(int slots, const ImageSpaceSettings& s) {
          static_cast<std::size_t>(s.samples) * sizeof(ImageSpacePatternRecord);
 }
 
-gpu::Texture screenTexture(GLenum format, int width, int height) {
-  gpu::Texture t = gpu::Texture::create2D(format, width, height);
-  t.setFilter(GL_NEAREST, GL_NEAREST);
-  t.setWrap(GL_CLAMP_TO_EDGE);
-  return t;
-}
-
 /// GL state of the passes, back to the defaults at the end of the scope.
 struct PassState {
   ~PassState() {
